@@ -1,0 +1,130 @@
+// modalbench: solve a beam or plate scene with one of several methods and compare them.
+//
+// Sample runs:
+//   modalbench list
+//   modalbench solve scenes/paper_fixed_beam.toml --backend exact --json
+//   modalbench compare --out report
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <iostream>
+
+#include "modalbench/harness.hpp"
+#include "modalbench/json_output.hpp"
+#include "modalbench/registry.hpp"
+
+namespace mb = modalbench;
+
+namespace {
+
+std::filesystem::path scenes_dir() {
+  if (const char* env = std::getenv("MODALBENCH_SCENES")) return env;
+  return MODALBENCH_SCENES_DIR;
+}
+
+int run_list(const mb::Registry& reg) {
+  std::cout << "back-ends:\n";
+  for (const auto* s : reg.all()) std::cout << fmt::format("  {:<14} {}\n", s->name(), s->description());
+  std::cout << fmt::format("scenes ({}):\n", scenes_dir().string());
+  for (const auto& f : mb::scene_files(scenes_dir())) {
+    try {
+      const mb::Scene sc = mb::load_scene(f);
+      std::cout << fmt::format("  {:<40} {} {} ({})\n", f.filename().string(), mb::to_string(sc.kind),
+                               mb::to_string(sc.physics), mb::to_string(sc.theory));
+    } catch (const mb::InputError& e) {
+      std::cout << fmt::format("  {:<40} INVALID: {}\n", f.filename().string(), e.what());
+    }
+  }
+  return 0;
+}
+
+void print_text(const mb::Scene& scene, const std::string& backend, const mb::Discretization& mesh,
+                const mb::Result& r) {
+  std::cout << fmt::format("scene {} | backend {} | mesh {} | {}\n", scene.name, backend, mesh.spec(),
+                           mb::to_string(r.summary.status));
+  if (!r.summary.message.empty()) std::cout << "  " << r.summary.message << "\n";
+  if (!r.summary.method.empty()) std::cout << "  method: " << r.summary.method << "\n";
+  for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i)
+    std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  {:>14.8g} Hz  {}\n", i + 1, r.frequencies_rad_s[i],
+                             r.frequencies_rad_s[i] / (2 * 3.141592653589793), mb::to_string(r.mode_families[i]));
+  for (const auto& d : r.deflections)
+    std::cout << fmt::format("  probe ({:g}, {:g}) m: w = {:.8e} m, theta_y = {:.8e} rad\n", d.position[0],
+                             d.position[1], d.w, d.theta_y);
+  if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
+  for (const auto& n : scene.notes) std::cout << "  note: " << n << "\n";
+  for (const auto& w : r.summary.warnings) std::cout << "  warning: " << w << "\n";
+  std::cout << fmt::format("  time {:.4g} s\n", r.summary.total_time_s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"modalbench: which beam or plate model to trust, how accurate, at what cost"};
+  app.require_subcommand(1);
+  auto* list = app.add_subcommand("list", "list the built-in scenes and the back-ends");
+
+  auto* solve = app.add_subcommand("solve", "solve one scene with one back-end");
+  std::string scene_path, backend = "exact", mesh_spec, mass = "consistent";
+  bool json = false;
+  solve->add_option("scene", scene_path, "scene file (TOML)")->required();
+  solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`)");
+  solve->add_option("--mesh,-m", mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
+  solve->add_option("--mass", mass, "consistent or lumped (back-ends that offer both)");
+  solve->add_flag("--json", json, "print one JSON object (schema in README.md)");
+
+  auto* cmp = app.add_subcommand("compare", "run every back-end on scenes and write a report");
+  std::vector<std::string> cmp_scenes;
+  std::string out_dir = "report";
+  cmp->add_option("scenes", cmp_scenes, "scene files (default: every built-in scene)");
+  cmp->add_option("--out,-o", out_dir, "output directory");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    const mb::Registry reg = mb::make_default_registry();
+    if (*list) return run_list(reg);
+    if (*solve) {
+      const mb::Scene scene = mb::load_scene(scene_path);
+      const mb::Solver& solver = reg.get(backend);
+      const mb::Discretization mesh =
+          mesh_spec.empty() ? solver.default_mesh(scene) : mb::Discretization::parse(mesh_spec);
+      mb::Options opt;
+      opt.mass = mass;
+      const mb::Result r = solver.solve(scene, mesh, opt);
+      if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
+      else print_text(scene, backend, mesh, r);
+      if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported) {
+        if (json) std::cerr << "modalbench: " << r.summary.message << "\n";
+        return 2;
+      }
+      return r.ok() ? 0 : 3;
+    }
+    if (*cmp) {
+      std::vector<mb::Scene> scenes;
+      if (cmp_scenes.empty())
+        for (const auto& f : mb::scene_files(scenes_dir())) scenes.push_back(mb::load_scene(f));
+      else
+        for (const auto& f : cmp_scenes) scenes.push_back(mb::load_scene(f));
+      mb::CompareOptions opt;
+      opt.out_dir = out_dir;
+      opt.progress = &std::cerr;
+      mb::compare(scenes, reg, opt);
+      std::cout << "report written to " << std::filesystem::absolute(out_dir / std::filesystem::path("index.html")).string()
+                << " (and report.md, results.json)\n";
+      return 0;
+    }
+  } catch (const mb::InputError& e) {
+    std::cerr << "modalbench: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "modalbench: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,38 @@
+# modalbench_add_boost_test(NAME name SOURCES a.cpp ... LIBS ...)
+# Builds one Boost.Test executable and registers every test case in CTest on its own
+# (suite/case), so CTest's counts are real. Test cases are read from the sources:
+# BOOST_AUTO_TEST_SUITE(s), BOOST_AUTO_TEST_CASE(c), BOOST_DATA_TEST_CASE(c, ...),
+# BOOST_FIXTURE_TEST_CASE(c, F), BOOST_AUTO_TEST_SUITE_END().
+function(modalbench_add_boost_test)
+  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} Boost::unit_test_framework modalbench_warnings)
+  target_compile_definitions(${T_NAME} PRIVATE BOOST_TEST_DYN_LINK
+    MODALBENCH_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes"
+    MODALBENCH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
+  set(count 0)
+  foreach(src IN LISTS T_SOURCES)
+    file(STRINGS ${src} lines)
+    set(suites "")
+    foreach(line IN LISTS lines)
+      if(line MATCHES "^[ \t]*BOOST_AUTO_TEST_SUITE\\(([A-Za-z0-9_]+)")
+        list(APPEND suites ${CMAKE_MATCH_1})
+      elseif(line MATCHES "^[ \t]*BOOST_AUTO_TEST_SUITE_END\\(")
+        list(POP_BACK suites)
+      elseif(line MATCHES "^[ \t]*BOOST_(AUTO|DATA|FIXTURE)_TEST_CASE\\(([A-Za-z0-9_]+)")
+        set(case ${CMAKE_MATCH_2})
+        list(JOIN suites "/" path)
+        if(path)
+          set(path "${path}/${case}")
+        else()
+          set(path "${case}")
+        endif()
+        add_test(NAME ${T_NAME}.${path} COMMAND ${T_NAME} --run_test=${path} --log_level=message)
+        math(EXPR count "${count} + 1")
+      endif()
+    endforeach()
+  endforeach()
+  if(count EQUAL 0)
+    message(FATAL_ERROR "${T_NAME}: no test cases found in ${T_SOURCES}")
+  endif()
+endfunction()

@@ -1,0 +1,116 @@
+#pragma once
+// Dynamic stiffness of a one-dimensional Hamiltonian field, with a Wittrick-Williams count.
+//
+// A field on xi in [0, 1] with state y = [d; f] (m displacements d, m conjugate forces f)
+// obeys y' = A(lambda) y, lambda = omega^2, where A is Hamiltonian in the sense
+//   A = [[A11, A12], [A21, -A11^T]],  A12 = A12^T,  A21 = A21^T,
+// and the strain-energy boundary terms are [f . delta d] from 0 to 1. A segment of length h
+// has transfer matrix T = exp(A h); with T = [[Tdd, Tdf], [Tfd, Tff]] its dynamic stiffness
+//   [-f(0); f(h)] = K_seg [d(0); d(h)],
+//   K_seg = [[Tdf^-1 Tdd, -Tdf^-1], [Tfd - Tff Tdf^-1 Tdd, Tff Tdf^-1]]
+// is symmetric. The line is cut into segments short enough that |p| h <= 1 for every
+// wavenumber p of A (so exp(A h) is well conditioned and no segment has a clamped-clamped
+// natural frequency below omega: the Wittrick-Williams J0 term vanishes); the segment
+// matrices are assembled into a block-tridiagonal K(lambda). End springs (per DOF, [0, inf],
+// inf = the DOF is held) are added at xi = 0 and xi = 1. Then
+//   J(lambda) = number of negative eigenvalues of K(lambda)
+// is exactly the number of natural frequencies below sqrt(lambda) (Wittrick & Williams 1971).
+//
+// Usage:
+//   LineSystem sys;  sys.m = 2;  sys.state_matrix = [](double lam) { ... };
+//   sys.max_wavenumber = [](double lam) { ... };  sys.left_spring = {inf, 0}; ...
+//   std::vector<double> lambdas = lowest_eigenvalues(sys, 6, /*lambda_hint=*/1.0);
+
+#include <Eigen/Dense>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace modalbench {
+
+/// Dynamic stiffness of one segment from the Hamiltonian state matrix A and length h.
+/// Returned symmetrised; `asymmetry`, if given, receives |K - K^T| / |K| before that
+/// (rounding-small exactly when A is Hamiltonian: a check on the operator's derivation).
+Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry = nullptr);
+
+/// A symmetric block-tridiagonal matrix: `nodes` diagonal blocks of size m x m.
+/// DOFs may be marked held (removed); the factorization works on the rest.
+class BlockTridiagonal {
+ public:
+  BlockTridiagonal(int nodes, int m);
+  int nodes() const { return static_cast<int>(diag_.size()); }
+  int block_size() const { return m_; }
+  /// Adds a 2m x 2m segment matrix between node i and node i + 1.
+  void add_segment(int i, const Eigen::MatrixXd& k_seg);
+  void add_diagonal(int node, int dof, double value) { diag_[node](dof, dof) += value; }
+  void hold(int node, int dof) { held_[node][dof] = 1; }
+  bool held(int node, int dof) const { return held_[node][dof] != 0; }
+  int free_dofs() const;
+
+  struct Inertia {
+    int negative = 0;        ///< number of negative eigenvalues
+    int zero = 0;            ///< pivots that were exactly zero or not finite
+    double min_abs_pivot_rel = 0;  ///< smallest |pivot| / max |pivot| (a conditioning hint)
+  };
+  /// Sylvester inertia by block LDL^T (congruence, so the count is exact up to rounding).
+  Inertia inertia() const;
+  /// Solves K d = f (f, d: nodes*m vectors; held DOFs get d = 0 and their f is ignored).
+  /// Throws std::runtime_error if K is singular to working precision.
+  Eigen::VectorXd solve(const Eigen::VectorXd& f) const;
+  /// Dense copy of the free part (for tests).
+  Eigen::MatrixXd dense_free() const;
+
+ private:
+  int m_;
+  std::vector<Eigen::MatrixXd> diag_, lower_;  // lower_[i] = block (i+1, i)
+  std::vector<std::vector<char>> held_;
+  std::vector<int> free_index(int node) const;
+  struct Factorization;
+  Factorization factor() const;
+};
+
+/// A line field problem in dimensionless form on [0, 1].
+struct LineSystem {
+  int m = 0;
+  std::function<Eigen::MatrixXd(double lambda)> state_matrix;  ///< A(lambda), 2m x 2m
+  /// An upper bound on |p| over the eigenvalues p of A(lambda) (sets the segment length).
+  std::function<double(double lambda)> max_wavenumber;
+  std::vector<double> left_spring, right_spring;  ///< per DOF, dimensionless, [0, inf]
+  std::vector<double> nodes_at;  ///< interior positions in (0, 1) that must be nodes (loads, probes)
+};
+
+/// The assembled K(lambda) with its node positions.
+struct AssembledLine {
+  BlockTridiagonal K;
+  std::vector<double> xi;  ///< position of every node
+  int node_at(double x) const;  ///< index of the node at x (exact match required)
+};
+AssembledLine assemble(const LineSystem& sys, double lambda);
+
+/// Number of natural frequencies with omega^2 < lambda (Wittrick-Williams).
+int count_below(const LineSystem& sys, double lambda);
+
+/// Count-driven spectrum slicing: the k eigenvalues just above `lambda_lo` of a problem
+/// whose counting function is `count(lambda)` = number of eigenvalues < lambda;
+/// `lambda_hint` is a scale (the bracket grows from it until it holds k more). Repeated
+/// eigenvalues are returned repeatedly. Bisection to `rel_tol` relative (1e-8 of that
+/// relative to `lambda_hint` near zero). Throws std::runtime_error if the count is not
+/// monotonic (numerical breakdown) or cannot be bracketed.
+struct SliceStats {
+  long count_evaluations = 0;
+};
+std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
+                                   double lambda_hint, double rel_tol = 1e-13, SliceStats* stats = nullptr);
+
+/// Eigenvalues below kRigidThreshold * lambda_hint are rigid-body modes (exactly 0).
+inline constexpr double kRigidThreshold = 1e-10;
+
+struct LineSpectrum {
+  std::vector<double> lambdas;  ///< lowest k values of omega^2, ascending; rigid ones are 0
+  int rigid = 0;                ///< how many of them are rigid-body modes
+};
+/// The lowest k eigenvalues lambda = omega^2 of a line system. `lambda_hint` sets the
+/// scale (e.g. the lambda at which the dimensionless frequency is 1).
+LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats = nullptr);
+
+}  // namespace modalbench

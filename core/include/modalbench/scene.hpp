@@ -1,0 +1,138 @@
+#pragma once
+// A scene: one beam or plate, its material, supports, loads and what is asked of it.
+//
+// A Scene is a method-agnostic value in SI units. It says nothing about how a back-end
+// discretizes it (that is the back-end's `Discretization`). Scenes are read from TOML
+// (see README.md, "Scene format") and validated on load: every rule that fails names the
+// file, the key and the reason (`InputError`).
+//
+// Coordinates: x along the beam axis / plate length a, y across (plate width b), z up.
+// Deflection w is along +z; rotations are right-handed about the axes, so for a beam
+// bending in x-z the section rotation theta_y equals -dw/dx (Euler-Bernoulli).
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace modalbench {
+
+/// Invalid input: carries the source (file), the key and the reason.
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string source, std::string key, std::string reason);
+  const std::string& source() const { return source_; }
+  const std::string& key() const { return key_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string source_, key_, reason_;
+};
+
+enum class SceneKind { Beam, Plate };
+/// Which fields a beam carries. Plates are always `Bending` (w, theta_x, theta_y).
+enum class Physics {
+  Bending,  ///< transverse bending in x-z only
+  Planar,   ///< axial + bending in x-z
+  Spatial,  ///< axial, bending in x-z and x-y, torsion (6 DOF)
+};
+/// The continuum theory the `exact` reference solves (back-ends state their own model).
+enum class Theory { EulerBernoulli, Timoshenko, Kirchhoff, Mindlin };
+
+std::string to_string(SceneKind);
+std::string to_string(Physics);
+std::string to_string(Theory);
+
+inline constexpr double kRigid = std::numeric_limits<double>::infinity();
+
+/// Support of one beam end or plate edge: a spring per DOF, each in [0, +inf] (inf = rigid).
+/// Beam end: N/m, N*m/rad. Plate edge: per unit length of edge, N/m^2 and N*m/(rad*m).
+struct Support {
+  std::string kind = "free";  ///< free | pinned | clamped | guided | springs
+  double translational = 0.0; ///< transverse (w; for spatial beams also v)
+  double rotational = 0.0;    ///< bending rotation (theta_y; spatial also theta_z); plate: about the edge
+  double axial = 0.0;         ///< beam only: u along x
+  double torsional = 0.0;     ///< beam only: theta_x
+
+  static Support named(const std::string& kind);  ///< throws std::invalid_argument if unknown
+  bool is_free() const { return translational == 0 && rotational == 0 && axial == 0 && torsional == 0; }
+};
+
+struct Material {
+  double E = 0;      ///< Young's modulus, Pa
+  double G = 0;      ///< shear modulus, Pa (given, or E / (2 (1 + nu)))
+  double nu = 0;     ///< Poisson's ratio (given, or E / (2 G) - 1)
+  double rho = 0;    ///< density, kg/m^3
+  double kappa = 0;  ///< shear correction coefficient
+  double loss_factor = 0;  ///< structural damping eta (E -> E (1 + i eta)) for FRFs
+};
+
+/// Beam: length L along x, rectangular section width (y) x height (z).
+/// Plate: a = length (x), b = width (y), thickness h = height.
+struct Geometry {
+  double length = 0, width = 0, height = 0;
+};
+
+/// Rectangular-section properties derived from Geometry.
+struct Section {
+  double A;   ///< area, m^2
+  double Iy;  ///< second moment about y (bending in x-z), m^4
+  double Iz;  ///< second moment about z (bending in x-y), m^4
+  double J;   ///< Saint-Venant torsion constant, m^4
+  double Ip;  ///< polar second moment Iy + Iz (torsional rotary inertia per rho), m^4
+};
+Section rectangular_section(double width, double height);
+
+/// A static point load. Beam: at x. Plate: at (x, y); only Fz is meaningful.
+struct PointLoad {
+  double x = 0, y = 0;
+  double Fx = 0, Fy = 0, Fz = 0;  ///< N
+  double Mx = 0, My = 0, Mz = 0;  ///< N*m, right-handed about the axes
+};
+
+struct FrfRequest {
+  std::array<double, 2> excite{};   ///< beam: {x, 0}; plate: {x, y}; unit Fz there
+  std::array<double, 2> observe{};  ///< where w is observed
+  double omega_min = 0, omega_max = 0;  ///< rad/s
+  int points = 0;
+};
+
+struct Request {
+  int modes = 0;
+  std::vector<std::array<double, 2>> probes;  ///< beam: {x, 0}; plate: {x, y}
+  std::optional<FrfRequest> frf;
+};
+
+struct Scene {
+  std::string name;
+  std::string source;  ///< file it was read from (for messages)
+  SceneKind kind = SceneKind::Beam;
+  Physics physics = Physics::Bending;
+  Theory theory = Theory::Timoshenko;
+  Geometry geometry;
+  Material material;
+  /// Beam: ends x0, xL. Plate: edges x0, xL (normal x), y0, yB (normal y).
+  Support x0, xL, y0, yB;
+  std::vector<PointLoad> loads;
+  Request request;
+  std::vector<std::string> notes;  ///< defaults applied, errata cited, etc.
+
+  bool is_beam() const { return kind == SceneKind::Beam; }
+  bool is_plate() const { return kind == SceneKind::Plate; }
+  Section section() const { return rectangular_section(geometry.width, geometry.height); }
+  /// Plate flexural rigidity D = E h^3 / (12 (1 - nu^2)), N*m.
+  double plate_D() const;
+};
+
+/// Reads and validates a scene file. Throws InputError (file, key, reason).
+Scene load_scene(const std::filesystem::path& path);
+/// Parses and validates TOML text; `source` names it in messages.
+Scene parse_scene(std::string_view toml_text, const std::string& source);
+/// Checks a scene built in code with the same rules as the parser.
+void validate(const Scene& scene);
+
+}  // namespace modalbench

@@ -1,0 +1,72 @@
+#include "modalbench/json_output.hpp"
+
+#include <cmath>
+
+namespace modalbench {
+
+namespace {
+// JSON has no Inf/NaN: such a value becomes null (and the summary already flags it).
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+}  // namespace
+
+nlohmann::json to_json(const Scene& scene, const std::string& backend, const Discretization& mesh,
+                       const Result& r) {
+  using nlohmann::json;
+  json j;
+  j["scene"] = scene.name;
+  j["scene_file"] = scene.source;
+  j["backend"] = backend;
+  j["mesh"] = mesh.spec();
+  j["status"] = to_string(r.summary.status);
+  j["message"] = r.summary.message;
+  j["method"] = r.summary.method;
+  j["dofs"] = r.summary.dofs;
+  json freqs = json::array(), fams = json::array();
+  for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i) {
+    freqs.push_back(num(r.frequencies_rad_s[i]));
+    fams.push_back(to_string(r.mode_families[i]));
+  }
+  j["frequencies_rad_s"] = freqs;
+  j["mode_families"] = fams;
+  json defl = json::array();
+  for (const auto& d : r.deflections) {
+    json e;
+    if (scene.is_beam()) {
+      e["position"] = json::array({d.position[0]});
+      e["w"] = num(d.w);
+      e["rotation"] = num(d.theta_y);
+      if (scene.physics != Physics::Bending) e["u"] = num(d.u);
+      if (scene.physics == Physics::Spatial) {
+        e["v"] = num(d.v);
+        e["theta_x"] = num(d.theta_x);
+        e["theta_z"] = num(d.theta_z);
+      }
+    } else {
+      e["position"] = json::array({d.position[0], d.position[1]});
+      e["w"] = num(d.w);
+      e["rotation"] = json::array({num(d.theta_x), num(d.theta_y)});
+    }
+    defl.push_back(e);
+  }
+  j["deflections"] = defl;
+  if (!r.frf.empty()) {
+    json f = json::array();
+    for (const auto& s : r.frf)
+      f.push_back({{"omega_rad_s", num(s.omega_rad_s)}, {"re", num(s.receptance.real())}, {"im", num(s.receptance.imag())}});
+    j["frf"] = f;
+  }
+  json timing = json::object();
+  for (const auto& [phase, t] : r.summary.timings_s) timing[phase] = t;
+  timing["total"] = r.summary.total_time_s;
+  j["timing_s"] = timing;
+  j["diagnostics"] = {{"iterations", r.summary.iterations},
+                      {"max_residual", num(r.summary.max_residual)},
+                      {"condition_estimate", num(r.summary.condition_estimate)}};
+  json warnings = json::array();
+  for (const auto& n : scene.notes) warnings.push_back("scene: " + n);
+  for (const auto& w : r.summary.warnings) warnings.push_back(w);
+  j["warnings"] = warnings;
+  return j;
+}
+
+}  // namespace modalbench

@@ -1,0 +1,410 @@
+#include "modalbench/line_dsm.hpp"
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace modalbench {
+
+Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry) {
+  const Eigen::Index n2 = A.rows();
+  if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
+  const Eigen::Index m = n2 / 2;
+  // exp() is accurate relative to the norm of its argument; the state matrices mix entries
+  // of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
+  // of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
+  Eigen::MatrixXd B = A * h;
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(n2);
+  for (int sweep = 0; sweep < 20; ++sweep) {
+    bool changed = false;
+    for (Eigen::Index i = 0; i < n2; ++i) {
+      double c = 0, r = 0;
+      for (Eigen::Index j = 0; j < n2; ++j)
+        if (j != i) {
+          c += std::abs(B(j, i));
+          r += std::abs(B(i, j));
+        }
+      if (c == 0 || r == 0) continue;
+      int e = 0;
+      std::frexp(std::sqrt(r / c), &e);
+      const double f = std::ldexp(1.0, e - 1);
+      if (f != 1.0 && (c * f + r / f) < 0.95 * (c + r)) {
+        B.col(i) *= f;
+        B.row(i) /= f;
+        scale[i] *= f;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  const Eigen::MatrixXd T = scale.asDiagonal() * B.exp() * scale.cwiseInverse().asDiagonal();
+  const auto Tdd = T.topLeftCorner(m, m), Tdf = T.topRightCorner(m, m);
+  const auto Tfd = T.bottomLeftCorner(m, m), Tff = T.bottomRightCorner(m, m);
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(Tdf);
+  const Eigen::MatrixXd TdfInvTdd = lu.solve(Eigen::MatrixXd(Tdd));
+  const Eigen::MatrixXd TdfInv = lu.inverse();
+  Eigen::MatrixXd K(n2, n2);
+  K.topLeftCorner(m, m) = TdfInvTdd;
+  K.topRightCorner(m, m) = -TdfInv;
+  K.bottomLeftCorner(m, m) = Tfd - Tff * TdfInvTdd;
+  K.bottomRightCorner(m, m) = Tff * TdfInv;
+  if (asymmetry) *asymmetry = (K - K.transpose()).norm() / K.norm();
+  // Symmetric in exact arithmetic; remove the rounding asymmetry so the LDL^T sees one matrix.
+  return 0.5 * (K + K.transpose());
+}
+
+namespace detail {
+
+/// LDL^T of a small symmetric block, with an eigen-decomposition fall-back when the
+/// diagonal pivoting meets a zero or non-finite pivot.
+struct SymFactor {
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;
+  bool use_eig = false;
+  int negative = 0, zero = 0;
+  double min_abs = std::numeric_limits<double>::infinity(), max_abs = 0;
+
+  explicit SymFactor(const Eigen::MatrixXd& S) {
+    if (S.rows() == 0) return;
+    ldlt.compute(S);
+    bool good = ldlt.info() == Eigen::Success;
+    if (good) {
+      const Eigen::VectorXd d = ldlt.vectorD();
+      for (Eigen::Index i = 0; i < d.size(); ++i)
+        if (!std::isfinite(d[i]) || d[i] == 0.0) good = false;
+      if (good) {
+        for (Eigen::Index i = 0; i < d.size(); ++i) tally(d[i]);
+        return;
+      }
+    }
+    use_eig = true;
+    eig.compute(S);
+    const Eigen::VectorXd ev = eig.eigenvalues();
+    const double scale = ev.cwiseAbs().maxCoeff();
+    for (Eigen::Index i = 0; i < ev.size(); ++i) {
+      if (!std::isfinite(ev[i]) || std::abs(ev[i]) <= 1e-300 + 1e-15 * scale) ++zero;
+      tally(ev[i]);
+    }
+  }
+  void tally(double d) {
+    if (d < 0) ++negative;
+    min_abs = std::min(min_abs, std::abs(d));
+    max_abs = std::max(max_abs, std::abs(d));
+  }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const {
+    if (B.rows() == 0) return B;
+    if (!use_eig) return ldlt.solve(B);
+    Eigen::VectorXd inv = eig.eigenvalues();
+    const double scale = inv.cwiseAbs().maxCoeff();
+    for (Eigen::Index i = 0; i < inv.size(); ++i) {
+      const double e = inv[i];
+      // A zero pivot: regularise so the elimination can go on; callers see `zero`.
+      inv[i] = std::abs(e) <= 1e-15 * scale ? 1.0 / (1e-15 * scale + 1e-300) : 1.0 / e;
+    }
+    return eig.eigenvectors() * inv.asDiagonal() * (eig.eigenvectors().transpose() * B);
+  }
+};
+
+}  // namespace detail
+using detail::SymFactor;
+
+BlockTridiagonal::BlockTridiagonal(int nodes, int m)
+    : m_(m),
+      diag_(nodes, Eigen::MatrixXd::Zero(m, m)),
+      lower_(std::max(nodes - 1, 0), Eigen::MatrixXd::Zero(m, m)),
+      held_(nodes, std::vector<char>(m, 0)) {
+  if (nodes < 1 || m < 1) throw std::invalid_argument("BlockTridiagonal needs nodes >= 1 and m >= 1");
+}
+
+void BlockTridiagonal::add_segment(int i, const Eigen::MatrixXd& k) {
+  diag_[i] += k.topLeftCorner(m_, m_);
+  diag_[i + 1] += k.bottomRightCorner(m_, m_);
+  lower_[i] += k.bottomLeftCorner(m_, m_);
+}
+
+std::vector<int> BlockTridiagonal::free_index(int node) const {
+  std::vector<int> idx;
+  for (int j = 0; j < m_; ++j)
+    if (!held_[node][j]) idx.push_back(j);
+  return idx;
+}
+
+int BlockTridiagonal::free_dofs() const {
+  int n = 0;
+  for (int i = 0; i < nodes(); ++i) n += static_cast<int>(free_index(i).size());
+  return n;
+}
+
+namespace {
+Eigen::MatrixXd pick(const Eigen::MatrixXd& M, const std::vector<int>& rows, const std::vector<int>& cols) {
+  Eigen::MatrixXd out(rows.size(), cols.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t c = 0; c < cols.size(); ++c) out(r, c) = M(rows[r], cols[c]);
+  return out;
+}
+}  // namespace
+
+// Block LDL^T with a variable partition. Each pivot group covers consecutive nodes; a
+// group's pivot block is the Schur complement of everything before it. When that block is
+// nearly singular compared with its nodes' own stiffness (a substructure resonance, which
+// elimination without pivoting would amplify), the next node joins the group and the
+// pivoting inside the group's LDL^T takes care of it. The partition changes nothing in exact
+// arithmetic (it is still a congruence), so the inertia count stays exact.
+struct BlockTridiagonal::Factorization {
+  struct Group {
+    int first = 0, last = 0;      // node range
+    std::vector<int> offset;      // start of each node's free DOFs inside the group
+    Eigen::MatrixXd coupling;     // (next node free) x (group DOFs): only the last node's columns
+    std::unique_ptr<SymFactor> pivot;
+  };
+  std::vector<Group> groups;
+  std::vector<std::vector<int>> idx;
+  int negative = 0, zero = 0;
+  double min_abs = std::numeric_limits<double>::infinity(), max_abs = 0;
+};
+
+BlockTridiagonal::Factorization BlockTridiagonal::factor() const {
+  constexpr double kMergeBelow = 1e-8;
+  constexpr int kMaxGroup = 16;
+  Factorization F;
+  const int n = nodes();
+  F.idx.resize(n);
+  for (int i = 0; i < n; ++i) F.idx[i] = free_index(i);
+  Eigen::MatrixXd carry;  // Schur complement update for the next group's first node
+  int i = 0;
+  while (i < n) {
+    Factorization::Group g;
+    g.first = i;
+    Eigen::MatrixXd S = pick(diag_[i], F.idx[i], F.idx[i]);
+    if (carry.size() > 0) S -= carry;
+    double node_scale = diag_[i].norm();
+    g.offset = {0};
+    int last = i;
+    auto pivot = std::make_unique<SymFactor>(S);
+    while (last + 1 < n && last - i + 1 < kMaxGroup && S.rows() > 0 &&
+           (pivot->zero > 0 || pivot->min_abs < kMergeBelow * node_scale)) {
+      // Join node last + 1 to the group.
+      const int nx = last + 1;
+      const int p = static_cast<int>(S.rows()), q = static_cast<int>(F.idx[nx].size());
+      Eigen::MatrixXd S2 = Eigen::MatrixXd::Zero(p + q, p + q);
+      S2.topLeftCorner(p, p) = S;
+      const Eigen::MatrixXd L = pick(lower_[last], F.idx[nx], F.idx[last]);
+      const int c0 = g.offset.back();
+      S2.block(p, c0, q, L.cols()) = L;
+      S2.block(c0, p, L.cols(), q) = L.transpose();
+      S2.bottomRightCorner(q, q) = pick(diag_[nx], F.idx[nx], F.idx[nx]);
+      g.offset.push_back(p);
+      S = std::move(S2);
+      node_scale = std::max(node_scale, diag_[nx].norm());
+      last = nx;
+      pivot = std::make_unique<SymFactor>(S);
+    }
+    g.last = last;
+    F.negative += pivot->negative;
+    F.zero += pivot->zero;
+    if (S.rows() > 0) {
+      F.min_abs = std::min(F.min_abs, pivot->min_abs);
+      F.max_abs = std::max(F.max_abs, pivot->max_abs);
+    }
+    carry.resize(0, 0);
+    if (last + 1 < n) {
+      const Eigen::MatrixXd L = pick(lower_[last], F.idx[last + 1], F.idx[last]);
+      g.coupling = Eigen::MatrixXd::Zero(L.rows(), S.rows());
+      g.coupling.rightCols(L.cols()) = L;
+      if (S.rows() > 0 && L.rows() > 0) carry = g.coupling * pivot->solve(g.coupling.transpose());
+    }
+    g.pivot = std::move(pivot);
+    F.groups.push_back(std::move(g));
+    i = last + 1;
+  }
+  return F;
+}
+
+BlockTridiagonal::Inertia BlockTridiagonal::inertia() const {
+  const Factorization F = factor();
+  Inertia in;
+  in.negative = F.negative;
+  in.zero = F.zero;
+  in.min_abs_pivot_rel = F.max_abs > 0 ? F.min_abs / F.max_abs : 0.0;
+  return in;
+}
+
+Eigen::VectorXd BlockTridiagonal::solve(const Eigen::VectorXd& f) const {
+  const int n = nodes();
+  if (f.size() != static_cast<Eigen::Index>(n) * m_) throw std::invalid_argument("right-hand side has the wrong size");
+  const Factorization F = factor();
+  if (F.zero > 0 || !(F.min_abs > 1e-14 * F.max_abs))
+    throw std::runtime_error("dynamic stiffness matrix is singular to working precision (a mechanism, or omega at a natural frequency)");
+  const std::size_t G = F.groups.size();
+  // Forward: y_g = f_g - C_{g-1} S_{g-1}^-1 y_{g-1} (C couples group g-1 to g's first node).
+  std::vector<Eigen::VectorXd> y(G);
+  for (std::size_t g = 0; g < G; ++g) {
+    const auto& grp = F.groups[g];
+    const int size = static_cast<int>(grp.pivot ? (grp.offset.back() + F.idx[grp.last].size()) : 0);
+    y[g] = Eigen::VectorXd::Zero(size);
+    for (int nd = grp.first; nd <= grp.last; ++nd)
+      for (std::size_t r = 0; r < F.idx[nd].size(); ++r)
+        y[g][grp.offset[nd - grp.first] + r] = f[nd * m_ + F.idx[nd][r]];
+    if (g > 0 && F.groups[g - 1].coupling.size() > 0) {
+      const auto& prev = F.groups[g - 1];
+      const Eigen::VectorXd corr = prev.coupling * prev.pivot->solve(y[g - 1]);
+      y[g].head(corr.size()) -= corr;
+    }
+  }
+  // Backward: x_g = S_g^-1 (y_g - C_g^T x_{g+1, first node}).
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(f.size());
+  Eigen::VectorXd next;
+  for (std::size_t g = G; g-- > 0;) {
+    const auto& grp = F.groups[g];
+    Eigen::VectorXd rhs = y[g];
+    if (g + 1 < G && grp.coupling.size() > 0) rhs -= grp.coupling.transpose() * next.head(grp.coupling.rows());
+    const Eigen::VectorXd x = grp.pivot->solve(rhs);
+    for (int nd = grp.first; nd <= grp.last; ++nd)
+      for (std::size_t r = 0; r < F.idx[nd].size(); ++r) d[nd * m_ + F.idx[nd][r]] = x[grp.offset[nd - grp.first] + r];
+    next = x;
+  }
+  return d;
+}
+
+Eigen::MatrixXd BlockTridiagonal::dense_free() const {
+  std::vector<int> offset(nodes() + 1, 0);
+  for (int i = 0; i < nodes(); ++i) offset[i + 1] = offset[i] + static_cast<int>(free_index(i).size());
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(offset.back(), offset.back());
+  for (int i = 0; i < nodes(); ++i) {
+    auto idx = free_index(i);
+    D.block(offset[i], offset[i], idx.size(), idx.size()) = pick(diag_[i], idx, idx);
+    if (i > 0) {
+      auto pidx = free_index(i - 1);
+      Eigen::MatrixXd L = pick(lower_[i - 1], idx, pidx);
+      D.block(offset[i], offset[i - 1], idx.size(), pidx.size()) = L;
+      D.block(offset[i - 1], offset[i], pidx.size(), idx.size()) = L.transpose();
+    }
+  }
+  return D;
+}
+
+int AssembledLine::node_at(double x) const {
+  for (std::size_t i = 0; i < xi.size(); ++i)
+    if (xi[i] == x) return static_cast<int>(i);
+  throw std::invalid_argument("no node at xi = " + std::to_string(x));
+}
+
+AssembledLine assemble(const LineSystem& sys, double lambda) {
+  const int m = sys.m;
+  if (static_cast<int>(sys.left_spring.size()) != m || static_cast<int>(sys.right_spring.size()) != m)
+    throw std::invalid_argument("LineSystem: end springs must have m entries");
+  // Breakpoints: 0, the required interior nodes, 1; each gap cut so that |p| h <= 1.
+  std::vector<double> breaks = {0.0, 1.0};
+  for (double x : sys.nodes_at) {
+    if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("LineSystem: node outside [0, 1]");
+    breaks.push_back(x);
+  }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  const double p = std::max(sys.max_wavenumber(lambda), 1e-12);
+  if (!std::isfinite(p)) throw std::runtime_error("LineSystem: wavenumber bound is not finite");
+  std::vector<double> xi = {0.0};
+  for (std::size_t g = 0; g + 1 < breaks.size(); ++g) {
+    const double len = breaks[g + 1] - breaks[g];
+    const double pieces = std::ceil(len * p);
+    if (pieces > 1e7) throw std::runtime_error("LineSystem: more than 1e7 segments needed at this frequency");
+    const int n = std::max(1, static_cast<int>(pieces));
+    for (int j = 1; j < n; ++j) xi.push_back(breaks[g] + len * j / n);
+    xi.push_back(breaks[g + 1]);
+  }
+  AssembledLine out{BlockTridiagonal(static_cast<int>(xi.size()), m), xi};
+  const Eigen::MatrixXd A = sys.state_matrix(lambda);
+  // Equal-length pieces share one segment matrix.
+  double last_h = -1;
+  Eigen::MatrixXd k_seg;
+  for (std::size_t i = 0; i + 1 < xi.size(); ++i) {
+    const double h = xi[i + 1] - xi[i];
+    if (std::abs(h - last_h) > 1e-15 * h) {
+      k_seg = segment_dynamic_stiffness(A, h);
+      last_h = h;
+    }
+    out.K.add_segment(static_cast<int>(i), k_seg);
+  }
+  const int last = static_cast<int>(xi.size()) - 1;
+  for (int j = 0; j < m; ++j) {
+    if (std::isinf(sys.left_spring[j])) out.K.hold(0, j);
+    else out.K.add_diagonal(0, j, sys.left_spring[j]);
+    if (std::isinf(sys.right_spring[j])) out.K.hold(last, j);
+    else out.K.add_diagonal(last, j, sys.right_spring[j]);
+  }
+  return out;
+}
+
+int count_below(const LineSystem& sys, double lambda) { return assemble(sys, lambda).K.inertia().negative; }
+
+std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
+                                   double lambda_hint, double rel_tol, SliceStats* stats) {
+  std::vector<double> out;
+  if (k <= 0) return out;
+  long evals = 0;
+  auto N = [&](double lam) {
+    ++evals;
+    return count(lam);
+  };
+  const int n_lo = N(lambda_lo);
+  const int want = n_lo + k;
+  double hi = std::max(std::abs(lambda_hint), std::abs(lambda_lo));
+  if (!(hi > lambda_lo)) hi = lambda_lo + std::abs(lambda_hint);
+  int n_hi = N(hi);
+  for (int grow = 0; n_hi < want; ++grow) {
+    if (grow > 400 || !std::isfinite(hi))
+      throw std::runtime_error("spectrum slicing: could not bracket " + std::to_string(k) + " eigenvalues");
+    hi = lambda_lo + 2.0 * (hi - lambda_lo);
+    n_hi = N(hi);
+  }
+  const double abs_tol = rel_tol * 1e-8 * std::abs(lambda_hint);
+  struct Interval { double lo, hi; int n_lo, n_hi; };
+  std::vector<Interval> stack = {{lambda_lo, hi, n_lo, n_hi}};
+  std::vector<std::pair<double, int>> found;  // value, multiplicity
+  while (!stack.empty()) {
+    Interval iv = stack.back();
+    stack.pop_back();
+    if (iv.n_lo >= want || iv.n_hi == iv.n_lo) continue;
+    const double width = iv.hi - iv.lo;
+    if (width <= std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol)) {
+      found.emplace_back(0.5 * (iv.lo + iv.hi), std::min(iv.n_hi, want) - iv.n_lo);
+      continue;
+    }
+    const double mid = 0.5 * (iv.lo + iv.hi);
+    const int n_mid = N(mid);
+    if (n_mid < iv.n_lo || n_mid > iv.n_hi)
+      throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +
+                               std::to_string(mid) + ")");
+    stack.push_back({mid, iv.hi, n_mid, iv.n_hi});
+    stack.push_back({iv.lo, mid, iv.n_lo, n_mid});
+  }
+  std::sort(found.begin(), found.end());
+  for (auto& [v, mult] : found)
+    for (int j = 0; j < mult; ++j) out.push_back(v);
+  out.resize(std::min<std::size_t>(out.size(), k));
+  if (stats) stats->count_evaluations += evals;
+  return out;
+}
+
+LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats) {
+  LineSpectrum out;
+  const double delta = kRigidThreshold * std::abs(lambda_hint);
+  auto N = [&](double lam) { return count_below(sys, lam); };
+  const int below = N(-delta);
+  if (below != 0)
+    throw std::runtime_error("the system has " + std::to_string(below) +
+                             " negative eigenvalue(s) omega^2 < 0: it is unstable, not a vibrating structure");
+  out.rigid = std::min(N(delta), k);
+  out.lambdas.assign(out.rigid, 0.0);
+  auto rest = slice_spectrum(N, k - out.rigid, delta, lambda_hint, 1e-13, stats);
+  out.lambdas.insert(out.lambdas.end(), rest.begin(), rest.end());
+  if (stats) stats->count_evaluations += 2;
+  return out;
+}
+
+}  // namespace modalbench
