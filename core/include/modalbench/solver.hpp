@@ -49,6 +49,8 @@ class Solver {
   virtual Capability supports(const Scene& scene) const = 0;
   /// The mesh used when none is given.
   virtual Discretization default_mesh(const Scene& scene) const = 0;
+  /// Meshes from coarse to fine for convergence studies (each should be valid for the scene).
+  virtual std::vector<Discretization> mesh_ladder(const Scene& scene) const { return {default_mesh(scene)}; }
 
   /// Validates, times, and fills the summary; then calls the back-end. Never throws for
   /// numerical trouble or unsupported requests: those come back in `summary.status`.
