@@ -91,7 +91,14 @@ int main(int argc, char** argv) {
     if (*list) return run_list(reg);
     if (*solve) {
       const mb::Scene scene = mb::load_scene(scene_path);
-      const mb::Solver& solver = reg.get(backend);
+      const mb::Solver* found = nullptr;
+      try {
+        found = &reg.get(backend);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "modalbench: --backend: " << e.what() << "\n";
+        return 2;
+      }
+      const mb::Solver& solver = *found;
       const mb::Discretization mesh =
           mesh_spec.empty() ? solver.default_mesh(scene) : mb::Discretization::parse(mesh_spec);
       mb::Options opt;
