@@ -12,6 +12,8 @@ function(modalbench_add_boost_test)
     MODALBENCH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
   set(count 0)
   foreach(src IN LISTS T_SOURCES)
+    # Re-run CMake when a test source changes, so added or renamed cases are registered.
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${src})
     file(STRINGS ${src} lines)
     set(suites "")
     foreach(line IN LISTS lines)
