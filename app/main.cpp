@@ -14,12 +14,13 @@
 #include "modalbench/harness.hpp"
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
+#include "modalbench/report.hpp"
 
 namespace mb = modalbench;
 
 namespace {
 
-std::filesystem::path scenes_dir() {
+std::string scenes_dir() {
   if (const char* env = std::getenv("MODALBENCH_SCENES")) return env;
   return MODALBENCH_SCENES_DIR;
 }
@@ -27,14 +28,14 @@ std::filesystem::path scenes_dir() {
 int run_list(const mb::Registry& reg) {
   std::cout << "back-ends:\n";
   for (const auto* s : reg.all()) std::cout << fmt::format("  {:<14} {}\n", s->name(), s->description());
-  std::cout << fmt::format("scenes ({}):\n", scenes_dir().string());
+  std::cout << fmt::format("scenes ({}):\n", scenes_dir());
   for (const auto& f : mb::scene_files(scenes_dir())) {
     try {
       const mb::Scene sc = mb::load_scene(f);
-      std::cout << fmt::format("  {:<40} {} {} ({})\n", f.filename().string(), mb::to_string(sc.kind),
+      std::cout << fmt::format("  {:<40} {} {} ({})\n", std::filesystem::path(f).filename().string(), mb::to_string(sc.kind),
                                mb::to_string(sc.physics), mb::to_string(sc.theory));
     } catch (const mb::InputError& e) {
-      std::cout << fmt::format("  {:<40} INVALID: {}\n", f.filename().string(), e.what());
+      std::cout << fmt::format("  {:<40} INVALID: {}\n", std::filesystem::path(f).filename().string(), e.what());
     }
   }
   return 0;
@@ -77,8 +78,13 @@ int main(int argc, char** argv) {
   auto* cmp = app.add_subcommand("compare", "run every back-end on scenes and write a report");
   std::vector<std::string> cmp_scenes;
   std::string out_dir = "report";
+  double budget_s = 30.0;
+  bool quick = false;
   cmp->add_option("scenes", cmp_scenes, "scene files (default: every built-in scene)");
   cmp->add_option("--out,-o", out_dir, "output directory");
+  cmp->add_option("--budget", budget_s, "seconds per scene and back-end for its mesh ladder (default 30)")
+      ->check(CLI::PositiveNumber);
+  cmp->add_flag("--quick", quick, "one timing repeat and at most three meshes per back-end");
 
   try {
     app.parse(argc, argv);
@@ -119,11 +125,13 @@ int main(int argc, char** argv) {
       else
         for (const auto& f : cmp_scenes) scenes.push_back(mb::load_scene(f));
       mb::CompareOptions opt;
-      opt.out_dir = out_dir;
+      opt.budget_s = budget_s;
+      opt.quick = quick;
       opt.progress = &std::cerr;
-      mb::compare(scenes, reg, opt);
-      std::cout << "report written to " << std::filesystem::absolute(out_dir / std::filesystem::path("index.html")).string()
-                << " (and report.md, results.json)\n";
+      const auto comparisons = mb::run_comparison(scenes, reg, opt);
+      const std::string index = mb::write_report(comparisons, out_dir, mb::ReportOptions{});
+      std::cout << "report written to " << std::filesystem::absolute(index).string()
+                << " (and report.md, runs.csv, frequencies.csv, results.json, plots/)\n";
       return 0;
     }
   } catch (const mb::InputError& e) {

@@ -3,124 +3,288 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
-
-#include "modalbench/json_output.hpp"
+#include <chrono>
+#include <filesystem>
+#include <map>
 
 namespace modalbench {
 
-std::vector<std::filesystem::path> scene_files(const std::filesystem::path& dir) {
-  std::vector<std::filesystem::path> files;
-  if (!std::filesystem::is_directory(dir)) throw InputError(dir.string(), "", "scene directory not found");
-  for (const auto& e : std::filesystem::directory_iterator(dir))
-    if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  return files;
+double relative_error(double value, double reference) {
+  if (!std::isfinite(value) || !std::isfinite(reference) || reference == 0.0) return kNaN;
+  return std::abs(value / reference - 1.0);
+}
+
+std::vector<int> match_modes(const std::vector<ModeFamily>& reference, const std::vector<ModeFamily>& run) {
+  std::map<ModeFamily, std::vector<int>> by_family;
+  std::vector<int> elastic;
+  bool labelled = false;
+  for (int j = 0; j < static_cast<int>(run.size()); ++j) {
+    if (run[j] == ModeFamily::Rigid) continue;
+    by_family[run[j]].push_back(j);
+    elastic.push_back(j);
+    labelled = labelled || run[j] != ModeFamily::Unknown;
+  }
+  std::map<ModeFamily, std::size_t> used;
+  std::size_t used_elastic = 0;
+  std::vector<int> out(reference.size(), -1);
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const ModeFamily f = reference[i];
+    if (f == ModeFamily::Rigid) continue;
+    if (!labelled) {
+      if (used_elastic < elastic.size()) out[i] = elastic[used_elastic++];
+      continue;
+    }
+    auto& list = by_family[f];
+    std::size_t& u = used[f];
+    if (u < list.size()) out[i] = list[u++];
+  }
+  return out;
+}
+
+Richardson richardson(const std::vector<double>& h, const std::vector<double>& f) {
+  Richardson r;
+  if (h.size() < 3 || h.size() != f.size()) return r;
+  const std::size_t n = h.size();
+  const double h1 = h[n - 3], h2 = h[n - 2], h3 = h[n - 1];
+  const double f1 = f[n - 3], f2 = f[n - 2], f3 = f[n - 1];
+  r.value = f3;
+  r.uncertainty = std::abs(f3 - f2);
+  if (!(h1 > h2 && h2 > h3 && h3 > 0) || !std::isfinite(f1 + f2 + f3)) return r;
+  const double d21 = f2 - f1, d32 = f3 - f2;
+  if (d32 == 0.0) {  // converged to rounding
+    r.value = f3;
+    r.uncertainty = 0.0;
+    r.order = kNaN;
+    r.ok = true;
+    return r;
+  }
+  if (d21 == 0.0 || d32 / d21 <= 0.0) return r;  // oscillating: no extrapolation
+  const double target = d32 / d21;
+  // g(p) = (h3^p - h2^p) / (h2^p - h1^p) decreases from ~ln-ratio to 0 as p grows.
+  auto g = [&](double p) { return (std::pow(h3, p) - std::pow(h2, p)) / (std::pow(h2, p) - std::pow(h1, p)); };
+  double lo = 0.05, hi = 20.0;
+  if (!((g(lo) - target) * (g(hi) - target) < 0)) return r;
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if ((g(lo) - target) * (g(mid) - target) <= 0) hi = mid;
+    else lo = mid;
+  }
+  const double p = 0.5 * (lo + hi);
+  const double C = d32 / (std::pow(h3, p) - std::pow(h2, p));
+  r.order = p;
+  r.value = f3 - C * std::pow(h3, p);
+  r.uncertainty = std::abs(r.value - f3);
+  r.ok = true;
+  return r;
 }
 
 namespace {
 
-std::string html_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+using clock_type = std::chrono::steady_clock;
+
+RunRecord timed_run(const Solver& s, const Scene& scene, const Discretization& mesh, const CompareOptions& opt) {
+  RunRecord rec;
+  rec.backend = s.name();
+  rec.mesh = mesh;
+  std::vector<double> times;
+  auto once = [&]() {
+    const auto t0 = clock_type::now();
+    Result r = s.solve(scene, mesh, Options{});
+    times.push_back(std::chrono::duration<double>(clock_type::now() - t0).count());
+    return r;
+  };
+  rec.result = once();  // warm-up; its result is the one kept
+  if (!opt.quick && !rec.failed() && times[0] < 1.0) {
+    times.clear();
+    double spent = 0;
+    while (static_cast<int>(times.size()) < opt.max_repeats && (times.size() < 3 || spent < opt.min_timing_s)) {
+      once();
+      spent += times.back();
     }
   }
-  return o;
+  std::vector<double> sorted = times;
+  std::sort(sorted.begin(), sorted.end());
+  rec.median_s = sorted[sorted.size() / 2];
+  rec.repeats = static_cast<int>(times.size());
+  return rec;
 }
 
-const RunRecord* find_exact(const SceneReport& rep) {
-  for (const auto& r : rep.runs)
-    if (r.backend == "exact" && r.result.ok()) return &r;
-  return nullptr;
+double mesh_h(const Discretization& d) {
+  double prod = 1;
+  for (int c : d.counts) prod *= c;
+  return d.counts.empty() ? kNaN : std::pow(prod, -1.0 / static_cast<double>(d.counts.size()));
+}
+
+/// A Richardson reference from the finest three successful runs of one back-end.
+std::optional<Reference> richardson_reference(const std::vector<RunRecord>& runs, const std::string& backend) {
+  std::vector<const RunRecord*> ok;
+  for (const auto& r : runs)
+    if (r.backend == backend && !r.failed() && !r.result.frequencies_rad_s.empty() && !r.mesh.counts.empty())
+      ok.push_back(&r);
+  if (ok.size() < 3) return std::nullopt;
+  const RunRecord& fine = *ok.back();
+  Reference ref;
+  ref.source = "richardson(" + backend + ")";
+  ref.families = fine.result.mode_families;
+  const auto m1 = match_modes(ref.families, ok[ok.size() - 3]->result.mode_families);
+  const auto m2 = match_modes(ref.families, ok[ok.size() - 2]->result.mode_families);
+  const std::vector<double> h = {mesh_h(ok[ok.size() - 3]->mesh), mesh_h(ok[ok.size() - 2]->mesh), mesh_h(fine.mesh)};
+  for (std::size_t i = 0; i < ref.families.size(); ++i) {
+    const double f3 = fine.result.frequencies_rad_s[i];
+    if (ref.families[i] == ModeFamily::Rigid || m1[i] < 0 || m2[i] < 0) {
+      ref.frequencies_rad_s.push_back(f3);
+      ref.frequency_uncertainty.push_back(ref.families[i] == ModeFamily::Rigid ? 0.0 : kNaN);
+      continue;
+    }
+    const Richardson rr = richardson(h, {ok[ok.size() - 3]->result.frequencies_rad_s[m1[i]],
+                                         ok[ok.size() - 2]->result.frequencies_rad_s[m2[i]], f3});
+    ref.frequencies_rad_s.push_back(rr.value);
+    ref.frequency_uncertainty.push_back(rr.ok ? rr.uncertainty : kNaN);
+  }
+  return ref;
 }
 
 }  // namespace
 
-std::vector<SceneReport> compare(const std::vector<Scene>& scenes, const Registry& registry,
-                                 const CompareOptions& opt) {
-  std::vector<SceneReport> reports;
+void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run) {
+  const Result& r = run.result;
+  run.frequency_errors.assign(ref.frequencies_rad_s.size(), kNaN);
+  run.max_frequency_error = kNaN;
+  if (!ref.frequencies_rad_s.empty() && !r.frequencies_rad_s.empty()) {
+    const auto match = match_modes(ref.families, r.mode_families);
+    const int first = std::min<int>(6, std::max(scene.request.modes, 1));
+    double worst = 0;
+    int counted = 0;
+    bool complete = true;
+    for (std::size_t i = 0; i < ref.frequencies_rad_s.size(); ++i) {
+      if (match[i] >= 0) run.frequency_errors[i] = relative_error(r.frequencies_rad_s[match[i]], ref.frequencies_rad_s[i]);
+      if (ref.families[i] == ModeFamily::Rigid || counted >= first) continue;
+      ++counted;
+      if (std::isnan(run.frequency_errors[i])) complete = false;
+      else worst = std::max(worst, run.frequency_errors[i]);
+    }
+    run.max_frequency_error = (complete && counted > 0) ? worst : kNaN;
+  }
+  run.deflection_error = kNaN;
+  if (!ref.deflections.empty() && r.deflections.size() == ref.deflections.size()) {
+    double scale = 0, worst = 0;
+    for (const auto& d : ref.deflections) scale = std::max(scale, std::abs(d.w));
+    for (std::size_t i = 0; i < ref.deflections.size(); ++i) worst = std::max(worst, std::abs(r.deflections[i].w - ref.deflections[i].w));
+    if (scale > 0) run.deflection_error = worst / scale;
+  }
+  run.frf_error_db = kNaN;
+  if (!ref.frf.empty() && !r.frf.empty()) {
+    std::vector<double> db;
+    std::size_t j = 0;
+    for (const auto& s : r.frf) {
+      while (j < ref.frf.size() && ref.frf[j].omega_rad_s < s.omega_rad_s - 1e-9 * (1 + s.omega_rad_s)) ++j;
+      if (j >= ref.frf.size()) break;
+      if (std::abs(ref.frf[j].omega_rad_s - s.omega_rad_s) > 1e-9 * (1 + s.omega_rad_s)) continue;
+      const double a = std::abs(s.receptance), b = std::abs(ref.frf[j].receptance);
+      if (a > 0 && b > 0 && std::isfinite(a) && std::isfinite(b)) db.push_back(std::abs(20 * std::log10(a / b)));
+    }
+    if (!db.empty()) {
+      std::nth_element(db.begin(), db.begin() + static_cast<long>(db.size() / 2), db.end());
+      run.frf_error_db = db[db.size() / 2];
+    }
+  }
+}
+
+double time_to_accuracy(const SceneComparison& c, const std::string& backend, double target) {
+  for (const auto& r : c.runs)
+    if (r.backend == backend && !r.failed() && r.max_frequency_error <= target) return r.median_s;
+  return kNaN;
+}
+
+std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, const Registry& registry,
+                                            const CompareOptions& opt) {
+  std::vector<SceneComparison> out;
   for (const Scene& scene : scenes) {
-    SceneReport rep{scene, {}};
+    SceneComparison c{scene, {}, {}, {}};
     for (const Solver* s : registry.all()) {
       const Capability cap = s->supports(scene);
       if (!cap.any()) {
+        c.notes.push_back(fmt::format("{}: not run ({})", s->name(), cap.reason));
         if (opt.progress) *opt.progress << fmt::format("[{}] {}: skipped ({})\n", scene.name, s->name(), cap.reason);
         continue;
       }
-      const Discretization mesh = s->default_mesh(scene);
-      if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...\n", scene.name, s->name(), mesh.spec());
-      rep.runs.push_back({s->name(), mesh, s->solve(scene, mesh, Options{})});
+      std::vector<Discretization> ladder = s->mesh_ladder(scene);
+      if (opt.quick && ladder.size() > 3) ladder.resize(3);
+      double spent = 0, last_time = 0, growth = 2.0;
+      for (std::size_t k = 0; k < ladder.size(); ++k) {
+        if (k > 0 && spent + last_time * growth > opt.budget_s) {
+          c.notes.push_back(fmt::format("{}: ladder stopped before mesh {} (time budget {:.0f} s per back-end)",
+                                        s->name(), ladder[k].spec(), opt.budget_s));
+          break;
+        }
+        if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...", scene.name, s->name(), ladder[k].spec()) << std::flush;
+        RunRecord rec = timed_run(*s, scene, ladder[k], opt);
+        const double t = rec.median_s * rec.repeats;
+        spent += t;
+        if (last_time > 0 && rec.median_s > 0) growth = std::clamp(rec.median_s / last_time, 1.5, 16.0);
+        last_time = rec.median_s;
+        if (opt.progress)
+          *opt.progress << fmt::format(" {} in {:.3g} s (x{})\n", to_string(rec.result.summary.status), rec.median_s,
+                                       rec.repeats);
+        c.runs.push_back(std::move(rec));
+      }
     }
-    reports.push_back(std::move(rep));
-  }
+    for (const auto& extra : opt.extra_references)
+      for (auto& rec : extra(scene, opt.progress)) c.runs.push_back(std::move(rec));
 
-  std::filesystem::create_directories(opt.out_dir);
-  nlohmann::json all = nlohmann::json::array();
-  std::string md = "# modalbench report\n\nFrequencies in rad/s; relative error against the `exact` back-end.\n\n";
-  std::string html =
-      "<!doctype html><html><head><meta charset=\"utf-8\"><title>modalbench report</title>"
-      "<style>body{font-family:sans-serif;max-width:70em;margin:auto}table{border-collapse:collapse}"
-      "td,th{border:1px solid #999;padding:2px 8px;text-align:right}</style></head><body>"
-      "<h1>modalbench report</h1><p>Frequencies in rad/s; relative error against the <code>exact</code> back-end.</p>";
-  for (const auto& rep : reports) {
-    const RunRecord* ex = find_exact(rep);
-    md += fmt::format("## {} (`{}`)\n\n", rep.scene.name, rep.scene.source);
-    html += fmt::format("<h2>{} (<code>{}</code>)</h2>", html_escape(rep.scene.name), html_escape(rep.scene.source));
-    for (const auto& n : rep.scene.notes) {
-      md += "- note: " + n + "\n";
-      html += "<p>note: " + html_escape(n) + "</p>";
+    // The reference: the exact back-end where it succeeded, else Richardson.
+    for (const auto& r : c.runs) {
+      if (r.backend != "exact") continue;
+      const Result& x = r.result;
+      if (!x.frequencies_rad_s.empty() && x.summary.status == Status::Success) {
+        c.reference.source = "exact";
+        c.reference.frequencies_rad_s = x.frequencies_rad_s;
+        c.reference.families = x.mode_families;
+        c.reference.frequency_uncertainty.assign(x.frequencies_rad_s.size(), 0.0);
+      }
+      if (x.summary.status == Status::Success) {
+        c.reference.deflections = x.deflections;
+        c.reference.frf = x.frf;
+      }
     }
-    for (const auto& run : rep.runs) {
-      const auto& r = run.result;
-      all.push_back(to_json(rep.scene, run.backend, run.mesh, r));
-      md += fmt::format("\n### {} (mesh {}): {}{}\n\n", run.backend, run.mesh.spec(), to_string(r.summary.status),
-                        r.summary.message.empty() ? "" : " — " + r.summary.message);
-      html += fmt::format("<h3>{} (mesh {}): {}</h3>", html_escape(run.backend), html_escape(run.mesh.spec()),
-                          html_escape(to_string(r.summary.status) +
-                                      (r.summary.message.empty() ? "" : " — " + r.summary.message)));
-      if (!r.frequencies_rad_s.empty()) {
-        md += "| mode | family | omega [rad/s] | rel. error vs exact |\n|---:|---|---:|---:|\n";
-        html += "<table><tr><th>mode</th><th>family</th><th>omega [rad/s]</th><th>rel. error vs exact</th></tr>";
-        for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i) {
-          std::string err = "—";
-          if (ex && &run != ex && i < ex->result.frequencies_rad_s.size() && ex->result.frequencies_rad_s[i] > 0)
-            err = fmt::format("{:.3e}", std::abs(r.frequencies_rad_s[i] / ex->result.frequencies_rad_s[i] - 1.0));
-          md += fmt::format("| {} | {} | {:.6g} | {} |\n", i + 1, to_string(r.mode_families[i]),
-                            r.frequencies_rad_s[i], err);
-          html += fmt::format("<tr><td>{}</td><td>{}</td><td>{:.6g}</td><td>{}</td></tr>", i + 1,
-                              to_string(r.mode_families[i]), r.frequencies_rad_s[i], err);
+    if (c.reference.frequencies_rad_s.empty()) {
+      std::optional<Reference> best;
+      double best_unc = std::numeric_limits<double>::infinity();
+      for (const Solver* s : registry.all()) {
+        auto ref = richardson_reference(c.runs, s->name());
+        if (!ref) continue;
+        double worst = 0;
+        for (std::size_t i = 0; i < ref->frequencies_rad_s.size() && i < 6; ++i)
+          worst = std::max(worst, ref->frequency_uncertainty[i] / ref->frequencies_rad_s[i]);
+        if (std::isfinite(worst) && worst < best_unc) {
+          best_unc = worst;
+          best = std::move(ref);
         }
-        html += "</table>";
       }
-      if (!r.deflections.empty()) {
-        md += "\n| probe x [m] | w [m] | rotation theta_y [rad] |\n|---:|---:|---:|\n";
-        html += "<table><tr><th>probe x [m]</th><th>w [m]</th><th>rotation theta_y [rad]</th></tr>";
-        for (const auto& d : r.deflections) {
-          md += fmt::format("| {:.4g} | {:.6e} | {:.6e} |\n", d.position[0], d.w, d.theta_y);
-          html += fmt::format("<tr><td>{:.4g}</td><td>{:.6e}</td><td>{:.6e}</td></tr>", d.position[0], d.w, d.theta_y);
-        }
-        html += "</table>";
+      if (best) {
+        c.notes.push_back(fmt::format("no exact solution: errors are against {} (relative uncertainty up to {:.1e})",
+                                      best->source, best_unc));
+        best->deflections = c.reference.deflections;
+        best->frf = c.reference.frf;
+        c.reference = std::move(*best);
+      } else {
+        c.reference.source = "none";
+        c.notes.push_back("no exact solution and no back-end converged well enough for a Richardson estimate: errors not measured");
       }
-      for (const auto& w : r.summary.warnings) {
-        md += "- warning: " + w + "\n";
-        html += "<p>warning: " + html_escape(w) + "</p>";
-      }
-      md += fmt::format("\nrun time {:.3g} s\n", r.summary.total_time_s);
     }
-    md += "\n";
+    for (auto& r : c.runs) measure_errors(scene, c.reference, r);
+    out.push_back(std::move(c));
   }
-  html += "</body></html>\n";
-  std::ofstream(opt.out_dir / "report.md") << md;
-  std::ofstream(opt.out_dir / "index.html") << html;
-  std::ofstream(opt.out_dir / "results.json") << all.dump(2) << "\n";
-  return reports;
+  return out;
+}
+
+std::vector<std::string> scene_files(const std::string& dir) {
+  std::vector<std::string> files;
+  if (!std::filesystem::is_directory(dir)) throw InputError(dir, "", "scene directory not found");
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace modalbench

@@ -35,7 +35,10 @@ std::string to_string(ModeFamily f) {
 std::string Discretization::spec() const {
   if (counts.empty()) return "-";
   std::string s;
-  for (std::size_t i = 0; i < counts.size(); ++i) s += (i ? "x" : "") + std::to_string(counts[i]);
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    if (i) s += 'x';
+    s += std::to_string(counts[i]);
+  }
   return s;
 }
 
@@ -107,7 +110,10 @@ const Solver& Registry::get(const std::string& name) const {
   for (auto& s : solvers_)
     if (s->name() == name) return *s;
   std::string known;
-  for (auto& s : solvers_) known += (known.empty() ? "" : ", ") + s->name();
+  for (auto& s : solvers_) {
+    if (!known.empty()) known += ", ";
+    known += s->name();
+  }
   throw std::invalid_argument("unknown back-end '" + name + "' (known: " + known + ")");
 }
 
