@@ -51,6 +51,8 @@ class Solver {
   virtual Discretization default_mesh(const Scene& scene) const = 0;
   /// Meshes from coarse to fine for convergence studies (each should be valid for the scene).
   virtual std::vector<Discretization> mesh_ladder(const Scene& scene) const { return {default_mesh(scene)}; }
+  /// The largest meshes worth trying in the stability sweep (default: the finest of the ladder).
+  virtual std::vector<Discretization> stress_meshes(const Scene& scene) const { return {mesh_ladder(scene).back()}; }
 
   /// Validates, times, and fills the summary; then calls the back-end. Never throws for
   /// numerical trouble or unsupported requests: those come back in `summary.status`.
