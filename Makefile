@@ -4,6 +4,8 @@ SHELL := /bin/bash
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 REPORT_DIR ?= report
+# Seconds per scene and back-end for the mesh ladder (keeps `make report` under 10 minutes).
+BUDGET ?= 20
 PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev \
             libspectra-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
             libsuitesparse-dev gnuplot-nox
@@ -36,7 +38,9 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 report: build
-	./$(BUILD)/app/modalbench compare --out $(REPORT_DIR)
+	./$(BUILD)/app/modalbench compare --out $(REPORT_DIR) --budget $(BUDGET)
+	./$(BUILD)/app/modalbench stability --out $(REPORT_DIR)/stability
+	@echo "Report: $(CURDIR)/$(REPORT_DIR)/index.html  (stability sweep: $(CURDIR)/$(REPORT_DIR)/stability/stability.html)"
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)

@@ -15,6 +15,7 @@
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
 #include "modalbench/report.hpp"
+#include "modalbench/stability.hpp"
 
 namespace mb = modalbench;
 
@@ -86,6 +87,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   cmp->add_flag("--quick", quick, "one timing repeat and at most three meshes per back-end");
 
+  auto* stab = app.add_subcommand("stability", "sweep slenderness, spring stiffness, mesh size and high modes");
+  std::string stab_dir = "report/stability";
+  bool stab_quick = false;
+  stab->add_option("--out,-o", stab_dir, "output directory");
+  stab->add_flag("--quick", stab_quick, "a few cases per group");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -117,6 +124,17 @@ int main(int argc, char** argv) {
         return 2;
       }
       return r.ok() ? 0 : 3;
+    }
+    if (*stab) {
+      const auto rows = mb::run_stability(mb::stability_cases(stab_quick), reg, &std::cerr);
+      const int bad = mb::write_stability_report(rows, stab_dir);
+      std::cout << "stability report written to " << std::filesystem::absolute(stab_dir).string()
+                << "/stability.html (and stability.md, stability.csv)\n";
+      if (bad > 0) {
+        std::cerr << "modalbench: " << bad << " run(s) claimed success with non-finite, missing or unordered numbers\n";
+        return 3;
+      }
+      return 0;
     }
     if (*cmp) {
       std::vector<mb::Scene> scenes;

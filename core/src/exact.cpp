@@ -446,8 +446,6 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
       }
       r.summary.timings_s.emplace_back("frequencies", timer.lap());
     }
-    if (!s.request.probes.empty() || s.request.frf)
-      r.summary.warnings.push_back("exact plate statics and FRF are not available: not computed");
   }
   std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.first < y.first; });
   if (static_cast<int>(modes.size()) > k) modes.resize(k);

@@ -74,11 +74,23 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     if (options.mass != "consistent" && options.mass != "lumped")
       throw InputError("command line", "--mass", "must be consistent or lumped (got '" + options.mass + "')");
     const Capability cap = supports(scene);
-    if (!cap.any()) {
-      finish(Status::Unsupported, cap.reason);
+    // Say exactly which requested quantities this back-end will not compute.
+    std::vector<std::string> missing;
+    const auto& rq = scene.request;
+    if (rq.modes > 0 && !cap.modes) missing.push_back("natural frequencies");
+    if (!rq.probes.empty() && !cap.statics) missing.push_back("static deflections");
+    if (rq.frf && !cap.frf) missing.push_back("FRF");
+    const bool wants_something = rq.modes > 0 || !rq.probes.empty() || rq.frf.has_value();
+    const bool can_something = (rq.modes > 0 && cap.modes) || (!rq.probes.empty() && cap.statics) || (rq.frf && cap.frf);
+    if (!cap.any() || (wants_something && !can_something)) {
+      finish(Status::Unsupported, cap.reason.empty() ? "nothing requested is supported" : cap.reason);
     } else if (!options.validate_only) {
       do_solve(scene, mesh, options, result);
-      if (!cap.reason.empty()) result.summary.warnings.push_back("partly supported: " + cap.reason);
+      if (!missing.empty()) {
+        std::string what;
+        for (const auto& m : missing) what += (what.empty() ? "" : ", ") + m;
+        result.summary.warnings.push_back("not computed: " + what + (cap.reason.empty() ? "" : " (" + cap.reason + ")"));
+      }
     }
   } catch (const InputError& e) {
     finish(Status::InvalidInput, e.what());
