@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "modalbench/calculix.hpp"
 #include "modalbench/harness.hpp"
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
@@ -86,6 +87,9 @@ int main(int argc, char** argv) {
   cmp->add_option("--budget", budget_s, "seconds per scene and back-end for its mesh ladder (default 30)")
       ->check(CLI::PositiveNumber);
   cmp->add_flag("--quick", quick, "one timing repeat and at most three meshes per back-end");
+  std::string reference;
+  cmp->add_option("--reference", reference, "add an external 3D reference: calculix (needs ccx)")
+      ->check(CLI::IsMember({"calculix"}));
 
   auto* stab = app.add_subcommand("stability", "sweep slenderness, spring stiffness, mesh size and high modes");
   std::string stab_dir = "report/stability";
@@ -146,8 +150,23 @@ int main(int argc, char** argv) {
       opt.budget_s = budget_s;
       opt.quick = quick;
       opt.progress = &std::cerr;
+      mb::ReportOptions ropt;
+      if (reference == "calculix") {
+        const std::string version = mb::calculix_version("ccx");
+        if (version.empty()) {
+          ropt.preface.push_back("3D reference: CalculiX was requested but `ccx` was not found, so it was skipped "
+                                 "(Debian: apt-get install calculix-ccx).");
+        } else {
+          ropt.preface.push_back("3D reference: " + version + ", 20-node bricks with reduced integration (C3D20R); "
+                                 "run once per mesh (no repeats), its modes labelled from their shapes.");
+          const std::string work = (std::filesystem::path(out_dir) / "calculix").string();
+          opt.extra_references.push_back([work, budget_s](const mb::Scene& sc, std::ostream* progress) {
+            return mb::calculix_runs(sc, "ccx", work, budget_s, progress);
+          });
+        }
+      }
       const auto comparisons = mb::run_comparison(scenes, reg, opt);
-      const std::string index = mb::write_report(comparisons, out_dir, mb::ReportOptions{});
+      const std::string index = mb::write_report(comparisons, out_dir, ropt);
       std::cout << "report written to " << std::filesystem::absolute(index).string()
                 << " (and report.md, runs.csv, frequencies.csv, results.json, plots/)\n";
       return 0;

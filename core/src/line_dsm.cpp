@@ -11,14 +11,17 @@
 
 namespace modalbench {
 
-Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry) {
+namespace {
+
+// exp() is accurate relative to the norm of its argument; the state matrices mix entries
+// of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
+// of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
+template <class Mat>
+Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry) {
   const Eigen::Index n2 = A.rows();
   if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
   const Eigen::Index m = n2 / 2;
-  // exp() is accurate relative to the norm of its argument; the state matrices mix entries
-  // of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
-  // of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
-  Eigen::MatrixXd B = A * h;
+  Mat B = A * h;
   Eigen::VectorXd scale = Eigen::VectorXd::Ones(n2);
   for (int sweep = 0; sweep < 20; ++sweep) {
     bool changed = false;
@@ -42,20 +45,30 @@ Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, do
     }
     if (!changed) break;
   }
-  const Eigen::MatrixXd T = scale.asDiagonal() * B.exp() * scale.cwiseInverse().asDiagonal();
+  const Mat T = scale.asDiagonal() * Mat(B.exp()) * scale.cwiseInverse().asDiagonal();
   const auto Tdd = T.topLeftCorner(m, m), Tdf = T.topRightCorner(m, m);
   const auto Tfd = T.bottomLeftCorner(m, m), Tff = T.bottomRightCorner(m, m);
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu(Tdf);
-  const Eigen::MatrixXd TdfInvTdd = lu.solve(Eigen::MatrixXd(Tdd));
-  const Eigen::MatrixXd TdfInv = lu.inverse();
-  Eigen::MatrixXd K(n2, n2);
+  Eigen::PartialPivLU<Mat> lu(Tdf);
+  const Mat TdfInvTdd = lu.solve(Mat(Tdd));
+  const Mat TdfInv = lu.inverse();
+  Mat K(n2, n2);
   K.topLeftCorner(m, m) = TdfInvTdd;
   K.topRightCorner(m, m) = -TdfInv;
   K.bottomLeftCorner(m, m) = Tfd - Tff * TdfInvTdd;
   K.bottomRightCorner(m, m) = Tff * TdfInv;
   if (asymmetry) *asymmetry = (K - K.transpose()).norm() / K.norm();
   // Symmetric in exact arithmetic; remove the rounding asymmetry so the LDL^T sees one matrix.
-  return 0.5 * (K + K.transpose());
+  return Mat(0.5 * (K + K.transpose()));
+}
+
+}  // namespace
+
+Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry) {
+  return segment_dsm_impl(A, h, asymmetry);
+}
+
+Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry) {
+  return segment_dsm_impl(A, h, asymmetry);
 }
 
 namespace detail {
@@ -68,6 +81,7 @@ struct SymFactor {
   bool use_eig = false;
   int negative = 0, zero = 0;
   double min_abs = std::numeric_limits<double>::infinity(), max_abs = 0;
+  double log_abs = 0;  // log |det| of the block
 
   explicit SymFactor(const Eigen::MatrixXd& S) {
     if (S.rows() == 0) return;
@@ -93,6 +107,7 @@ struct SymFactor {
   }
   void tally(double d) {
     if (d < 0) ++negative;
+    log_abs += std::log(std::abs(d));
     min_abs = std::min(min_abs, std::abs(d));
     max_abs = std::max(max_abs, std::abs(d));
   }
@@ -166,6 +181,7 @@ struct BlockTridiagonal::Factorization {
   std::vector<std::vector<int>> idx;
   int negative = 0, zero = 0;
   double min_abs = std::numeric_limits<double>::infinity(), max_abs = 0;
+  double log_abs = 0;
 };
 
 BlockTridiagonal::Factorization BlockTridiagonal::factor() const {
@@ -207,6 +223,7 @@ BlockTridiagonal::Factorization BlockTridiagonal::factor() const {
     g.last = last;
     F.negative += pivot->negative;
     F.zero += pivot->zero;
+    F.log_abs += pivot->log_abs;
     if (S.rows() > 0) {
       F.min_abs = std::min(F.min_abs, pivot->min_abs);
       F.max_abs = std::max(F.max_abs, pivot->max_abs);
@@ -231,6 +248,7 @@ BlockTridiagonal::Inertia BlockTridiagonal::inertia() const {
   in.negative = F.negative;
   in.zero = F.zero;
   in.min_abs_pivot_rel = F.max_abs > 0 ? F.min_abs / F.max_abs : 0.0;
+  in.log_abs_det = F.log_abs;
   return in;
 }
 
@@ -405,6 +423,257 @@ LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint
   out.lambdas.insert(out.lambdas.end(), rest.begin(), rest.end());
   if (stats) stats->count_evaluations += 2;
   return out;
+}
+
+namespace {
+
+/// Brent's method (zeroin) on g over [a, b] with g(a), g(b) of opposite signs.
+template <class G>
+double brent_root(G&& g, double a, double b, double ga, double gb, double tol) {
+  double c = a, gc = ga, d = b - a, e = d;
+  for (int iter = 0; iter < 200; ++iter) {
+    if ((gb > 0) == (gc > 0)) {
+      c = a;
+      gc = ga;
+      d = e = b - a;
+    }
+    if (std::abs(gc) < std::abs(gb)) {
+      a = b; b = c; c = a;
+      ga = gb; gb = gc; gc = ga;
+    }
+    const double tol1 = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(b) + 0.5 * tol;
+    const double xm = 0.5 * (c - b);
+    if (std::abs(xm) <= tol1 || gb == 0.0) return b;
+    if (std::abs(e) >= tol1 && std::abs(ga) > std::abs(gb)) {
+      const double s = gb / ga;
+      double p, q;
+      if (a == c) {
+        p = 2.0 * xm * s;
+        q = 1.0 - s;
+      } else {
+        const double qq = ga / gc, r = gb / gc;
+        p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
+        q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+      }
+      if (p > 0) q = -q;
+      p = std::abs(p);
+      if (2.0 * p < std::min(3.0 * xm * q - std::abs(tol1 * q), std::abs(e * q))) {
+        e = d;
+        d = p / q;
+      } else {
+        d = xm;
+        e = d;
+      }
+    } else {
+      d = xm;
+      e = d;
+    }
+    a = b;
+    ga = gb;
+    b += std::abs(d) > tol1 ? d : (xm > 0 ? tol1 : -tol1);
+    gb = g(b);
+  }
+  return b;
+}
+
+}  // namespace
+
+std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
+                                            double lambda_hi, double rel_tol, double abs_tol, SliceStats* stats) {
+  std::vector<double> out;
+  if (!(lambda_hi > lambda_lo)) return out;
+  long evals = 0;
+  auto E = [&](double lam) {
+    ++evals;
+    return eval(lam);
+  };
+  struct Interval {
+    double lo, hi;
+    CountDet a, b;
+  };
+  std::vector<Interval> stack = {{lambda_lo, lambda_hi, E(lambda_lo), E(lambda_hi)}};
+  if (stack[0].b.count < stack[0].a.count)
+    throw std::runtime_error("spectrum slicing: count decreases between lambda_lo and lambda_hi");
+  auto narrow = [&](double lo, double hi) {
+    return hi - lo <= std::max(rel_tol * std::max(std::abs(lo), std::abs(hi)), abs_tol);
+  };
+  std::vector<std::pair<double, int>> found;
+  while (!stack.empty()) {
+    Interval iv = stack.back();
+    stack.pop_back();
+    const int n = iv.b.count - iv.a.count;
+    if (n <= 0) continue;
+    if (narrow(iv.lo, iv.hi)) {
+      found.emplace_back(0.5 * (iv.lo + iv.hi), n);
+      continue;
+    }
+    if (n == 1 && std::isfinite(iv.a.log_abs_det) && std::isfinite(iv.b.log_abs_det)) {
+      // Isolated: the signed determinant changes sign exactly once in (lo, hi).
+      const int n_lo = iv.a.count;
+      const double ref = std::max(iv.a.log_abs_det, iv.b.log_abs_det);
+      auto signed_det = [&](const CountDet& cd) {
+        if (cd.count != n_lo && cd.count != n_lo + 1)
+          throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown)");
+        const double mag = std::exp(std::clamp(cd.log_abs_det - ref, -600.0, 600.0));
+        return cd.count == n_lo ? mag : -mag;
+      };
+      auto g = [&](double lam) { return signed_det(E(lam)); };
+      const double tol = std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol);
+      const double root = brent_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol);
+      found.emplace_back(std::clamp(root, iv.lo, iv.hi), 1);
+      continue;
+    }
+    const double mid = 0.5 * (iv.lo + iv.hi);
+    const CountDet cm = E(mid);
+    if (cm.count < iv.a.count || cm.count > iv.b.count)
+      throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +
+                               std::to_string(mid) + ")");
+    stack.push_back({mid, iv.hi, cm, iv.b});
+    stack.push_back({iv.lo, mid, iv.a, cm});
+  }
+  std::sort(found.begin(), found.end());
+  for (auto& [v, mult] : found)
+    for (int j = 0; j < mult; ++j) out.push_back(v);
+  if (stats) stats->count_evaluations += evals;
+  return out;
+}
+
+// ---- ComplexBlockTridiagonal
+
+ComplexBlockTridiagonal::ComplexBlockTridiagonal(int nodes, int m)
+    : m_(m),
+      diag_(nodes, Eigen::MatrixXcd::Zero(m, m)),
+      lower_(std::max(nodes - 1, 0), Eigen::MatrixXcd::Zero(m, m)),
+      held_(nodes, std::vector<char>(m, 0)) {
+  if (nodes < 1 || m < 1) throw std::invalid_argument("ComplexBlockTridiagonal needs nodes >= 1 and m >= 1");
+}
+
+void ComplexBlockTridiagonal::add_segment(int i, const Eigen::MatrixXcd& k) {
+  diag_[i] += k.topLeftCorner(m_, m_);
+  diag_[i + 1] += k.bottomRightCorner(m_, m_);
+  lower_[i] += k.bottomLeftCorner(m_, m_);
+}
+
+std::vector<int> ComplexBlockTridiagonal::free_index(int node) const {
+  std::vector<int> idx;
+  for (int j = 0; j < m_; ++j)
+    if (!held_[node][j]) idx.push_back(j);
+  return idx;
+}
+
+namespace {
+Eigen::MatrixXcd pick_c(const Eigen::MatrixXcd& M, const std::vector<int>& rows, const std::vector<int>& cols) {
+  Eigen::MatrixXcd out(rows.size(), cols.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t c = 0; c < cols.size(); ++c) out(r, c) = M(rows[r], cols[c]);
+  return out;
+}
+}  // namespace
+
+Eigen::MatrixXcd ComplexBlockTridiagonal::dense_free() const {
+  std::vector<int> offset(nodes() + 1, 0);
+  for (int i = 0; i < nodes(); ++i) offset[i + 1] = offset[i] + static_cast<int>(free_index(i).size());
+  Eigen::MatrixXcd D = Eigen::MatrixXcd::Zero(offset.back(), offset.back());
+  for (int i = 0; i < nodes(); ++i) {
+    auto idx = free_index(i);
+    D.block(offset[i], offset[i], idx.size(), idx.size()) = pick_c(diag_[i], idx, idx);
+    if (i > 0) {
+      auto pidx = free_index(i - 1);
+      Eigen::MatrixXcd L = pick_c(lower_[i - 1], idx, pidx);
+      D.block(offset[i], offset[i - 1], idx.size(), pidx.size()) = L;
+      D.block(offset[i - 1], offset[i], pidx.size(), idx.size()) = L.transpose();
+    }
+  }
+  return D;
+}
+
+// Block elimination K = L U with groups of consecutive nodes as pivots (as in the real
+// factorization): a group whose pivot block is nearly singular (reciprocal condition below
+// 1e-10) takes in the next node, and partial pivoting inside the group handles it.
+Eigen::VectorXcd ComplexBlockTridiagonal::solve(const Eigen::VectorXcd& f) const {
+  constexpr double kMergeBelow = 1e-10;
+  constexpr int kMaxGroup = 16;
+  const int n = nodes();
+  if (f.size() != static_cast<Eigen::Index>(n) * m_) throw std::invalid_argument("right-hand side has the wrong size");
+  std::vector<std::vector<int>> idx(n);
+  for (int i = 0; i < n; ++i) idx[i] = free_index(i);
+  struct Group {
+    int first = 0, last = 0;
+    std::vector<int> offset;
+    Eigen::MatrixXcd coupling;  // (next node free) x (group DOFs)
+    Eigen::PartialPivLU<Eigen::MatrixXcd> lu;
+    int size = 0;
+  };
+  std::vector<Group> groups;
+  Eigen::MatrixXcd carry;
+  for (int i = 0; i < n;) {
+    Group g;
+    g.first = i;
+    Eigen::MatrixXcd S = pick_c(diag_[i], idx[i], idx[i]);
+    if (carry.size() > 0) S -= carry;
+    g.offset = {0};
+    int last = i;
+    auto rcond_of = [](const Eigen::MatrixXcd& M, Eigen::PartialPivLU<Eigen::MatrixXcd>& lu) {
+      if (M.rows() == 0) return 1.0;
+      lu.compute(M);
+      const double rc = lu.rcond();
+      return std::isfinite(rc) ? rc : 0.0;
+    };
+    double rc = rcond_of(S, g.lu);
+    while (last + 1 < n && last - i + 1 < kMaxGroup && S.rows() > 0 && rc < kMergeBelow) {
+      const int nx = last + 1;
+      const int p = static_cast<int>(S.rows()), q = static_cast<int>(idx[nx].size());
+      Eigen::MatrixXcd S2 = Eigen::MatrixXcd::Zero(p + q, p + q);
+      S2.topLeftCorner(p, p) = S;
+      const Eigen::MatrixXcd L = pick_c(lower_[last], idx[nx], idx[last]);
+      const int c0 = g.offset.back();
+      S2.block(p, c0, q, L.cols()) = L;
+      S2.block(c0, p, L.cols(), q) = L.transpose();
+      S2.bottomRightCorner(q, q) = pick_c(diag_[nx], idx[nx], idx[nx]);
+      g.offset.push_back(p);
+      S = std::move(S2);
+      last = nx;
+      rc = rcond_of(S, g.lu);
+    }
+    if (S.rows() > 0 && !(rc > 1e-15))
+      throw std::runtime_error("complex dynamic stiffness matrix is singular to working precision");
+    g.last = last;
+    g.size = static_cast<int>(S.rows());
+    carry.resize(0, 0);
+    if (last + 1 < n) {
+      const Eigen::MatrixXcd L = pick_c(lower_[last], idx[last + 1], idx[last]);
+      g.coupling = Eigen::MatrixXcd::Zero(L.rows(), S.rows());
+      g.coupling.rightCols(L.cols()) = L;
+      if (S.rows() > 0 && L.rows() > 0) carry = g.coupling * g.lu.solve(Eigen::MatrixXcd(g.coupling.transpose()));
+    }
+    groups.push_back(std::move(g));
+    i = last + 1;
+  }
+  const std::size_t G = groups.size();
+  std::vector<Eigen::VectorXcd> y(G);
+  for (std::size_t g = 0; g < G; ++g) {
+    const auto& grp = groups[g];
+    y[g] = Eigen::VectorXcd::Zero(grp.size);
+    for (int nd = grp.first; nd <= grp.last; ++nd)
+      for (std::size_t r = 0; r < idx[nd].size(); ++r) y[g][grp.offset[nd - grp.first] + r] = f[nd * m_ + idx[nd][r]];
+    if (g > 0 && groups[g - 1].coupling.size() > 0 && groups[g - 1].size > 0) {
+      const auto& prev = groups[g - 1];
+      const Eigen::VectorXcd corr = prev.coupling * prev.lu.solve(y[g - 1]);
+      y[g].head(corr.size()) -= corr;
+    }
+  }
+  Eigen::VectorXcd d = Eigen::VectorXcd::Zero(f.size());
+  Eigen::VectorXcd next;
+  for (std::size_t g = G; g-- > 0;) {
+    const auto& grp = groups[g];
+    Eigen::VectorXcd rhs = y[g];
+    if (g + 1 < G && grp.coupling.size() > 0) rhs -= grp.coupling.transpose() * next.head(grp.coupling.rows());
+    const Eigen::VectorXcd x = grp.size > 0 ? Eigen::VectorXcd(grp.lu.solve(rhs)) : rhs;
+    for (int nd = grp.first; nd <= grp.last; ++nd)
+      for (std::size_t r = 0; r < idx[nd].size(); ++r) d[nd * m_ + idx[nd][r]] = x[grp.offset[nd - grp.first] + r];
+    next = x;
+  }
+  return d;
 }
 
 }  // namespace modalbench

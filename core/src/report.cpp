@@ -371,12 +371,16 @@ std::string write_report(const std::vector<SceneComparison>& all, const std::str
         std::vector<std::string> row = {std::to_string(i + 1)};
         for (const auto& col : pub.columns) row.push_back(i < col.values.size() ? num_str(col.values[i]) : "—");
         for (const RunRecord* r : ours) {
-          // The paper lists bending/plate modes only: take ours in order within that family.
+          // The paper lists bending (beam) or plate modes only: take ours in order within that
+          // family; a run without labels in order of its elastic modes.
+          const ModeFamily want = c.scene.is_beam() ? ModeFamily::BendingXZ : ModeFamily::Plate;
+          const auto& fams = r->result.mode_families;
+          const bool labelled = std::any_of(fams.begin(), fams.end(), [](ModeFamily f) {
+            return f != ModeFamily::Unknown && f != ModeFamily::Rigid;
+          });
           std::vector<double> fam;
           for (std::size_t k = 0; k < r->result.frequencies_rad_s.size(); ++k)
-            if (r->result.mode_families[k] == ModeFamily::BendingXZ || r->result.mode_families[k] == ModeFamily::Plate ||
-                r->result.mode_families[k] == ModeFamily::Unknown)
-              fam.push_back(r->result.frequencies_rad_s[k]);
+            if (labelled ? fams[k] == want : fams[k] != ModeFamily::Rigid) fam.push_back(r->result.frequencies_rad_s[k]);
           row.push_back(i < fam.size() ? num_str(fam[i]) : "—");
         }
         prow.push_back(row);

@@ -22,6 +22,7 @@
 //   std::vector<double> lambdas = lowest_eigenvalues(sys, 6, /*lambda_hint=*/1.0);
 
 #include <Eigen/Dense>
+#include <complex>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -51,6 +52,9 @@ class BlockTridiagonal {
     int negative = 0;        ///< number of negative eigenvalues
     int zero = 0;            ///< pivots that were exactly zero or not finite
     double min_abs_pivot_rel = 0;  ///< smallest |pivot| / max |pivot| (a conditioning hint)
+    /// log |det K| over the free DOFs (sign: (-1)^negative). Continuous in lambda on a fixed
+    /// mesh, so it can polish a root once the count has isolated it.
+    double log_abs_det = 0;
   };
   /// Sylvester inertia by block LDL^T (congruence, so the count is exact up to rounding).
   Inertia inertia() const;
@@ -102,6 +106,22 @@ struct SliceStats {
 std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
                                    double lambda_hint, double rel_tol = 1e-13, SliceStats* stats = nullptr);
 
+/// What a polished slicer needs at one lambda: the count and log |det K(lambda)|.
+struct CountDet {
+  int count = 0;
+  double log_abs_det = 0;
+};
+/// Every eigenvalue in [lambda_lo, lambda_hi) of a problem whose `eval(lambda)` gives the
+/// count below lambda and log |det K(lambda)|, with multiplicity, ascending. Bisection on the
+/// count until an interval holds exactly one eigenvalue; that one is then polished by Brent's
+/// method on the signed determinant (-1)^count |det K| (continuous there: `eval` must use one
+/// discretization for every lambda in the range, so that det has no pole and no jump).
+/// Intervals narrower than rel_tol (relative; abs_tol near zero) with several eigenvalues give
+/// them as a repeated value. Throws std::runtime_error if the count is not monotonic.
+std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
+                                            double lambda_hi, double rel_tol, double abs_tol,
+                                            SliceStats* stats = nullptr);
+
 /// Eigenvalues below kRigidThreshold * lambda_hint are rigid-body modes (exactly 0).
 inline constexpr double kRigidThreshold = 1e-10;
 
@@ -112,5 +132,33 @@ struct LineSpectrum {
 /// The lowest k eigenvalues lambda = omega^2 of a line system. `lambda_hint` sets the
 /// scale (e.g. the lambda at which the dimensionless frequency is 1).
 LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats = nullptr);
+
+// ---- Complex path: damped harmonic response (structural damping, lambda = omega^2 / (1 + i eta)).
+
+/// Segment dynamic stiffness of a complex (damped) Hamiltonian state matrix: complex symmetric.
+Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry = nullptr);
+
+/// A complex symmetric block-tridiagonal matrix (no conjugation), for damped harmonic solves.
+/// Factorized by block LU with partial pivoting inside each pivot block; a nearly singular
+/// pivot block is merged with the next node's, as in BlockTridiagonal.
+class ComplexBlockTridiagonal {
+ public:
+  ComplexBlockTridiagonal(int nodes, int m);
+  int nodes() const { return static_cast<int>(diag_.size()); }
+  int block_size() const { return m_; }
+  void add_segment(int i, const Eigen::MatrixXcd& k_seg);
+  void add_diagonal(int node, int dof, std::complex<double> value) { diag_[node](dof, dof) += value; }
+  void hold(int node, int dof) { held_[node][dof] = 1; }
+  bool held(int node, int dof) const { return held_[node][dof] != 0; }
+  /// Solves K d = f; held DOFs get d = 0. Throws std::runtime_error if K is singular.
+  Eigen::VectorXcd solve(const Eigen::VectorXcd& f) const;
+  Eigen::MatrixXcd dense_free() const;
+
+ private:
+  int m_;
+  std::vector<Eigen::MatrixXcd> diag_, lower_;
+  std::vector<std::vector<char>> held_;
+  std::vector<int> free_index(int node) const;
+};
 
 }  // namespace modalbench
