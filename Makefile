@@ -8,7 +8,7 @@ REPORT_DIR ?= report
 BUDGET ?= 20
 PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev \
             libspectra-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
-            libsuitesparse-dev gnuplot-nox
+            libsuitesparse-dev gnuplot-nox calculix-ccx
 
 .PHONY: all deps configure build report test sanitize clean
 
@@ -38,7 +38,7 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 report: build
-	./$(BUILD)/app/modalbench compare --out $(REPORT_DIR) --budget $(BUDGET)
+	./$(BUILD)/app/modalbench compare --out $(REPORT_DIR) --budget $(BUDGET) --reference calculix
 	./$(BUILD)/app/modalbench stability --out $(REPORT_DIR)/stability
 	@echo "Report: $(CURDIR)/$(REPORT_DIR)/index.html  (stability sweep: $(CURDIR)/$(REPORT_DIR)/stability/stability.html)"
 
