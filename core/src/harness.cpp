@@ -150,6 +150,9 @@ void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run) {
   const Result& r = run.result;
   run.frequency_errors.assign(ref.frequencies_rad_s.size(), kNaN);
   run.max_frequency_error = kNaN;
+  run.matched_by_order = std::none_of(r.mode_families.begin(), r.mode_families.end(), [](ModeFamily f) {
+    return f != ModeFamily::Unknown && f != ModeFamily::Rigid;
+  }) && !r.mode_families.empty();
   if (!ref.frequencies_rad_s.empty() && !r.frequencies_rad_s.empty()) {
     const auto match = match_modes(ref.families, r.mode_families);
     const int first = std::min<int>(6, std::max(scene.request.modes, 1));

@@ -303,6 +303,7 @@ std::string write_report(const std::vector<SceneComparison>& all, const std::str
       const auto& s = r.result.summary;
       std::string msg = s.message;
       if (msg.empty() && !s.warnings.empty()) msg = fmt::format("{} warning(s): {}", s.warnings.size(), s.warnings.front());
+      if (r.matched_by_order) msg = "modes matched by order (no family labels). " + msg;
       rows.push_back({r.backend, r.mesh.spec(), std::to_string(s.dofs), to_string(s.status),
                       fmt::format("{} (x{})", num_str(r.median_s), r.repeats), err_str(r.max_frequency_error),
                       err_str(r.deflection_error), std::isfinite(r.frf_error_db) ? fmt::format("{:.2f}", r.frf_error_db) : "—",

@@ -67,6 +67,7 @@ struct RunRecord {
   double max_frequency_error = kNaN;     ///< over the first min(6, modes) non-rigid reference modes
   double deflection_error = kNaN;        ///< max |w - w_ref| / max |w_ref| over probes
   double frf_error_db = kNaN;            ///< median |20 log10(|H| / |H_ref|)| over common samples
+  bool matched_by_order = false;         ///< the run had no family labels: modes paired by order
   bool failed() const { return result.summary.status != Status::Success; }
 };
 
