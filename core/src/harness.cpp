@@ -250,6 +250,16 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
         c.reference.frf = x.frf;
       }
     }
+    // The exact deflection line on a fine grid, for the plots.
+    if (c.reference.source == "exact" && scene.is_beam() && !scene.loads.empty() && !c.reference.deflections.empty()) {
+      Scene fine = scene;
+      fine.request.modes = 0;
+      fine.request.frf.reset();
+      fine.request.probes.clear();
+      for (int i = 0; i <= 100; ++i) fine.request.probes.push_back({scene.geometry.length * i / 100.0, 0.0});
+      const Result line = registry.get("exact").solve(fine, {}, Options{});
+      if (line.ok()) c.reference.deflection_line = line.deflections;
+    }
     if (c.reference.frequencies_rad_s.empty()) {
       std::optional<Reference> best;
       double best_unc = std::numeric_limits<double>::infinity();

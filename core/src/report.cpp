@@ -235,7 +235,7 @@ std::string write_report(const std::vector<SceneComparison>& all, const std::str
       fmt::format("<!doctype html><html><head><meta charset=\"utf-8\"><title>{}", esc(opt.title)) +
       "</title><style>body{font-family:Helvetica,Arial,sans-serif;max-width:78em;margin:1em auto;padding:0 1em;color:#222}"
       "table{border-collapse:collapse;margin:0.5em 0 1.2em}td,th{border:1px solid #bbb;padding:2px 8px;text-align:right;"
-      "font-variant-numeric:tabular-nums}th{background:#eee}td.l{text-align:left}figure{margin:0.5em 0}"
+      "font-variant-numeric:tabular-nums}th{background:#eee}td.l{text-align:left}figure{margin:0.5em 0}figure img{width:100%;max-width:760px}"
       "figcaption{font-size:90%;color:#555}h2{border-top:2px solid #888;padding-top:0.5em;margin-top:2em}</style>"
       "</head><body>\n";
   doc.heading(1, opt.title);
@@ -424,8 +424,12 @@ std::string write_report(const std::vector<SceneComparison>& all, const std::str
       std::vector<std::string> head = {c.scene.is_beam() ? "probe x [m]" : "probe (x, y) [m]", "reference w [m]"};
       std::vector<const RunRecord*> cols;
       std::vector<Series> dser;
-      if (!c.reference.deflections.empty()) {
-        Series s{"reference (" + c.reference.source + ")", {}};
+      if (!c.reference.deflection_line.empty()) {
+        Series s{"reference (" + c.reference.source + ")", {}, "lines"};
+        for (const auto& d : c.reference.deflection_line) s.points.emplace_back(d.position[0], d.w);
+        dser.push_back(s);
+      } else if (!c.reference.deflections.empty()) {
+        Series s{"reference (" + c.reference.source + ")", {}, "points"};
         for (std::size_t i = 0; i < c.reference.deflections.size(); ++i)
           s.points.emplace_back(c.scene.is_beam() ? c.reference.deflections[i].position[0] : static_cast<double>(i + 1),
                                 c.reference.deflections[i].w);

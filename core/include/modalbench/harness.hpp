@@ -53,6 +53,7 @@ struct Reference {
   std::vector<ModeFamily> families;
   std::vector<double> frequency_uncertainty;  ///< absolute, rad/s (0 for exact)
   std::vector<Deflection> deflections;
+  std::vector<Deflection> deflection_line;  ///< the exact static deflection on a fine grid (beams)
   std::vector<FrfSample> frf;
 };
 
