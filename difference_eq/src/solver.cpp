@@ -1,0 +1,211 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "modalbench/difference_eq/difference_eq.hpp"
+
+namespace modalbench::difference_eq {
+
+namespace {
+
+struct Timer {
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double lap() {
+    const auto t = std::chrono::steady_clock::now();
+    const double d = std::chrono::duration<double>(t - t0).count();
+    t0 = t;
+    return d;
+  }
+};
+
+// Node tolerance: x = r L / R within 1e-9 L.
+constexpr double kNodeTol = 1e-9;
+
+// Smallest q <= qmax with x / L within kNodeTol of a multiple of 1/q (0 if none).
+long denominator(double x_over_L, long qmax) {
+  for (long q = 1; q <= qmax; ++q) {
+    const double v = x_over_L * static_cast<double>(q);
+    if (std::abs(v - std::round(v)) <= kNodeTol * static_cast<double>(q)) return q;
+  }
+  return 0;
+}
+
+// Least R that puts every load and probe on a node (0 if they are not commensurate).
+long base_mesh(const Scene& s) {
+  std::vector<double> xs;
+  for (const auto& l : s.loads) xs.push_back(l.x);
+  for (const auto& p : s.request.probes) xs.push_back(p[0]);
+  long base = 1;
+  for (double x : xs) {
+    const long q = denominator(x / s.geometry.length, 4096);
+    if (q == 0) return 0;
+    base = std::lcm(base, q);
+    if (base > 1'000'000) return 0;
+  }
+  return base;
+}
+
+}  // namespace
+
+RegularBeam beam_of(const Scene& s, long R) {
+  const Section sec = s.section();
+  RegularBeam b;
+  b.EI = s.material.E * sec.Iy;
+  b.rhoA = s.material.rho * sec.A;
+  b.L = s.geometry.length;
+  b.R = R;
+  b.k0 = s.x0.translational;
+  b.r0 = s.x0.rotational;
+  b.kL = s.xL.translational;
+  b.rL = s.xL.rotational;
+  return b;
+}
+
+Capability DifferenceEqSolver::supports(const Scene& s) const {
+  Capability c;
+  if (!s.is_beam()) {
+    c.reason = "difference_eq solves beams only (a regular chain of Hermite beam elements); plates are not supported";
+    return c;
+  }
+  c.modes = c.statics = true;
+  c.frf = false;
+  std::vector<std::string> why;
+  if (s.request.frf) why.push_back("no FRF (not implemented by this back-end)");
+  if (s.theory == Theory::Timoshenko)
+    why.push_back("Timoshenko scene solved with the Euler-Bernoulli model (shear deformation and rotary inertia neglected)");
+  if (s.physics != Physics::Bending)
+    why.push_back("physics '" + to_string(s.physics) + "': only bending in x-z is solved (axial, torsion, x-y bending not modelled)");
+  for (std::size_t i = 0; i < why.size(); ++i) c.reason += (i ? "; " : "") + why[i];
+  return c;
+}
+
+Discretization DifferenceEqSolver::default_mesh(const Scene& s) const {
+  const long base = base_mesh(s);
+  const long want = std::max<long>(32, 8L * s.request.modes);
+  if (base == 0) return Discretization{{64}};
+  long R = base * ((want + base - 1) / base);
+  if (R > 1'000'000) R = base;
+  return Discretization{{static_cast<int>(R)}};
+}
+
+std::vector<Discretization> DifferenceEqSolver::mesh_ladder(const Scene& s) const {
+  const long base = base_mesh(s);
+  std::vector<Discretization> out;
+  if (base == 0 || base > 4096) return {default_mesh(s)};
+  long R = base;
+  while (R < 4) R *= 2;
+  for (; R <= 4096; R *= 2) out.push_back(Discretization{{static_cast<int>(R)}});
+  return out;
+}
+
+void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, const Options& options,
+                                  Result& res) const {
+  if (mesh.counts.size() != 1)
+    throw InputError("command line", "--mesh",
+                     "difference_eq takes one integer R >= 1, the number of elements (got '" + mesh.spec() + "')");
+  const long R = mesh.counts[0];
+  if (R < 1 || R > RegularBeam::kMaxElements)
+    throw InputError("command line", "--mesh",
+                     fmt::format("R must satisfy 1 <= R <= {} (got '{}')", RegularBeam::kMaxElements, mesh.spec()));
+  const MassModel mass = mass_model_from_string(options.mass);
+  Timer timer;
+  auto& sum = res.summary;
+  const RegularBeam beam = beam_of(s, R);
+  const double L = beam.L;
+  const int held = std::isinf(beam.k0) + std::isinf(beam.r0) + std::isinf(beam.kL) + std::isinf(beam.rL);
+  sum.dofs = 2 * (R + 1) - held;
+
+  // Loads must sit on nodes.
+  std::vector<NodalLoad> loads;
+  bool other_components = false;
+  for (std::size_t i = 0; i < s.loads.size(); ++i) {
+    const auto& l = s.loads[i];
+    const double pos = l.x / L * static_cast<double>(R);
+    const long r = std::lround(pos);
+    if (std::abs(l.x - static_cast<double>(r) * L / static_cast<double>(R)) > kNodeTol * L)
+      throw InputError(s.source, fmt::format("loads[{}].x", i),
+                       fmt::format("not at a node of mesh R={}: x = {} m, nodes at multiples of L/R = {} m "
+                                   "(nearest x = {} m)",
+                                   R, l.x, L / static_cast<double>(R), static_cast<double>(r) * L / static_cast<double>(R)));
+    loads.push_back({r, l.Fz, -l.My});
+    other_components = other_components || l.Fx != 0 || l.Fy != 0 || l.Mx != 0 || l.Mz != 0;
+  }
+
+  sum.method = fmt::format(
+      "difference_eq: regular discrete Euler-Bernoulli beam, R={} Hermite elements (bending in x-z); "
+      "modes: {} mass, 4x4 characteristic determinant in the difference-equation roots (scaled cosh/sinh) "
+      "+ Wittrick-Williams count, Brent; statics: clamped-clamped {} + 4x4 spring superposition (closed form)",
+      R, to_string(mass), to_string(config_.static_method));
+  // A Timoshenko scene or planar/spatial physics is reported by Solver::solve from supports().
+  if (other_components)
+    sum.warnings.push_back("load components other than Fz and My are ignored (bending in x-z only)");
+
+  // Free vibration.
+  const int k = s.request.modes;
+  if (k > 0) {
+    const Spectrum sp = natural_frequencies(beam, mass, k);
+    sum.iterations += sp.count_evaluations + sp.determinant_evaluations;
+    for (std::size_t i = 0; i < sp.omega_rad_s.size(); ++i) {
+      res.frequencies_rad_s.push_back(sp.omega_rad_s[i]);
+      res.mode_families.push_back(static_cast<int>(i) < sp.rigid ? ModeFamily::Rigid : ModeFamily::BendingXZ);
+    }
+    if (static_cast<int>(sp.omega_rad_s.size()) < k)
+      sum.warnings.push_back(fmt::format("the model has only {} natural frequencies ({} mass, R={}); {} requested",
+                                         sp.available, to_string(mass), R, k));
+    sum.timings_s.emplace_back("frequencies", timer.lap());
+    if (R <= config_.residual_check_max_R) {
+      double worst = 0;
+      for (std::size_t i = sp.rigid; i < sp.omega_rad_s.size(); ++i) {
+        const ModeShape u = mode_shape(beam, mass, sp.omega_rad_s[i]);
+        worst = std::max(worst, eigen_residual(beam, mass, sp.omega_rad_s[i], u));
+      }
+      sum.max_residual = std::max(sum.max_residual, worst);
+      sum.timings_s.emplace_back("mode residual check", timer.lap());
+    } else {
+      sum.warnings.push_back(fmt::format("mode-shape residual check skipped for R > {}", config_.residual_check_max_R));
+    }
+  }
+
+  // Statics at the probes.
+  if (!s.request.probes.empty()) {
+    StaticSolution st;
+    try {
+      st = solve_static(beam, loads, config_.static_method);
+    } catch (const Mechanism& e) {
+      sum.status = Status::InvalidInput;
+      sum.message = InputError(s.source, "supports", std::string("static solve impossible: ") + e.what()).what();
+      sum.timings_s.emplace_back("statics", timer.lap());
+      return;
+    }
+    int between = 0;
+    for (const auto& p : s.request.probes) {
+      Deflection d;
+      d.position = {p[0], 0.0};
+      const long r = std::lround(p[0] / L * static_cast<double>(R));
+      if (std::abs(p[0] - static_cast<double>(r) * L / static_cast<double>(R)) <= kNodeTol * L) {
+        d.w = st.w[r];
+        d.theta_y = -st.slope[r];
+      } else {
+        const auto v = interpolate(beam, st, p[0]);
+        d.w = v[0];
+        d.theta_y = -v[1];
+        ++between;
+      }
+      res.deflections.push_back(d);
+    }
+    if (between)
+      sum.warnings.push_back(fmt::format("{} probe(s) between nodes: Hermite interpolation of the element's nodal "
+                                         "values (exact for nodal loads, the element being unloaded)",
+                                         between));
+    for (const auto& w : st.warnings) sum.warnings.push_back(w);
+    sum.condition_estimate = st.support_condition;
+    sum.timings_s.emplace_back("statics", timer.lap());
+    sum.max_residual = std::max(sum.max_residual, static_residual(beam, loads, st));
+    sum.timings_s.emplace_back("static residual check", timer.lap());
+  }
+}
+
+}  // namespace modalbench::difference_eq
