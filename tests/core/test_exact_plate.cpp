@@ -91,3 +91,46 @@ BOOST_AUTO_TEST_CASE(mindlin_thickness_shear_modes_listed) {
   for (double x : w) found += std::abs(x / shear - 1) < 1e-12;
   BOOST_TEST(found == 2);  // (m, n) = (0, 1) and (1, 0) on a square plate
 }
+
+// A simply supported plate with a central force P deflects w = alpha P a^2 / D at the centre
+// (a the shorter side). Square: alpha = 0.01160 (Timoshenko & Woinowsky-Krieger, Table 23).
+// Rectangles: the independent Levy single series (TWK Eq. 146),
+//   alpha = 1 / (2 pi^3) sum_{m odd} (tanh b_m - b_m / cosh^2 b_m) / m^3,  b_m = m pi b / (2 a).
+BOOST_AUTO_TEST_CASE(navier_static_central_force) {
+  const double D = D_of(0.01), P = -1000.0, pi = std::numbers::pi;
+  auto levy_alpha = [&](double ratio) {
+    double sum = 0;
+    for (int m = 1; m < 20000; m += 2) {
+      const double bm = m * pi * ratio / 2;
+      sum += (bm < 300 ? std::tanh(bm) - bm / std::pow(std::cosh(bm), 2) : 1.0) / std::pow(m, 3);
+    }
+    return sum / (2 * pi * pi * pi);
+  };
+  BOOST_TEST(std::abs(levy_alpha(1.0) - 0.01160) < 0.000005);
+  for (double ratio : {1.0, 1.4, 2.0}) {
+    const double a = 1.0, b = ratio * a;
+    double tail = 0;
+    const auto w = navier_static(a, b, D, {{a / 2, b / 2, P}}, a / 2, b / 2, 2000, &tail);
+    BOOST_TEST(std::abs(w[0] / (levy_alpha(ratio) * P * a * a / D) - 1) < 2e-6, "b/a = " << ratio << ": " << w[0] * D / (P * a * a));
+    BOOST_TEST(tail < 1e-5 * std::abs(w[0]));
+    BOOST_TEST(std::abs(w[1]) < 1e-9 * std::abs(w[0]));  // the centre is a stationary point
+  }
+}
+
+// Maxwell reciprocity, the static limit of the receptance, and a resonance: near omega_11 the
+// receptance is dominated by the (1,1) term.
+BOOST_AUTO_TEST_CASE(navier_receptance_properties) {
+  const double a = 1.0, b = 0.6, h = 0.03, D = D_of(h), rh = rho * h;
+  const auto h12 = navier_receptance(a, b, D, rh, 0.0, 0.4, 0.2, 0.7, 0.45, 1000.0, 300);
+  const auto h21 = navier_receptance(a, b, D, rh, 0.0, 0.7, 0.45, 0.4, 0.2, 1000.0, 300);
+  BOOST_TEST(std::abs(h12 - h21) < 1e-14 * std::abs(h12));
+  const auto w = navier_static(a, b, D, {{0.4, 0.2, 1.0}}, 0.7, 0.45, 300);
+  const auto h0 = navier_receptance(a, b, D, rh, 0.0, 0.4, 0.2, 0.7, 0.45, 0.0, 300);
+  BOOST_TEST(std::abs(h0.real() / w[0] - 1) < 1e-12);
+  const double w11 = navier_frequencies(a, b, D, rh, 1)[0], eta = 0.01;
+  const auto hr = navier_receptance(a, b, D, rh, eta, 0.4, 0.2, 0.4, 0.2, w11, 300);
+  const double phi = std::sin(std::numbers::pi * 0.4 / a) * std::sin(std::numbers::pi * 0.2 / b);
+  const double modal = phi * phi / (rh * a * b / 4 * w11 * w11 * eta);  // |1 / (M w^2 i eta)|
+  BOOST_TEST(std::abs(std::abs(hr) / modal - 1) < 1e-2);
+  BOOST_TEST(hr.imag() < 0);  // the response lags the force
+}

@@ -35,10 +35,18 @@ BOOST_AUTO_TEST_CASE(paper_plate_scene) {
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   BOOST_TEST(r.frequencies_rad_s.size() == 8u);
   BOOST_TEST(std::abs(r.frequencies_rad_s[0] - 1692.45) < 0.01);
-  BOOST_TEST(!r.summary.warnings.empty());  // probes/FRF asked, not available exactly: said so
   const Capability c = s.supports(sc);
-  BOOST_TEST(c.modes);
-  BOOST_TEST(!c.statics);
+  BOOST_TEST((c.modes && c.statics && c.frf));  // Navier: all three
+  BOOST_TEST(r.deflections.size() == 2u);
+  BOOST_TEST(r.frf.size() == 400u);
+  // A clamped-edge Levy plate has exact frequencies only: statics are refused with a reason.
+  Scene levy = sc;
+  levy.y0 = levy.yB = Support::named("clamped");
+  const Result rl = s.solve(levy, {}, {});
+  BOOST_TEST(rl.ok());
+  BOOST_TEST(rl.deflections.empty());
+  BOOST_TEST(!rl.summary.warnings.empty());
+  BOOST_TEST(rl.summary.warnings[0].find("not computed: static deflections, FRF") != std::string::npos);
 }
 
 // A square spatial beam: bending in x-z and x-y coincide (multiplicity 2 with both labels),

@@ -23,6 +23,8 @@
 // Sources: Timoshenko & Gere; Wittrick & Williams (1971); Leissa, "Vibration of Plates"
 // (NASA SP-160, 1969) for the Levy forms; Mindlin (1951) for the thick plate.
 
+#include <array>
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,18 @@ double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings righ
 
 /// Kirchhoff plate, all edges simply supported (Navier).
 std::vector<double> navier_frequencies(double a, double b, double D, double rho_h, int k);
+/// Kirchhoff plate, all edges simply supported: receptance w(xo, yo) / F(xe, ye) at omega
+/// (omega = 0: static flexibility) by the Navier double series over m, n <= `terms`, with
+/// structural damping eta (omega_mn^2 -> omega_mn^2 (1 + i eta)). The series converges like
+/// terms^-2 for the driving point; `tail` (if given) receives |S(terms) - S(terms / 2)|, a
+/// bound on the truncation error.
+std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
+                                       double xo, double yo, double omega, int terms, double* tail = nullptr);
+/// Static deflection of a simply supported Kirchhoff plate at (x, y) under point forces,
+/// with the slopes: returns {w, dw/dx, dw/dy}.
+std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
+                                    double x, double y, int terms, double* tail = nullptr);
+
 /// Mindlin plate, all edges simply supported (hard), every branch.
 std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double E, double nu, double G,
                                            double kappa, double rho, int k);
