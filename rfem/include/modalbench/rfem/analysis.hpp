@@ -1,0 +1,89 @@
+#pragma once
+// Solves on an assembled rfem System: natural modes, static deflection, receptance FRFs.
+//
+// Modes: K z = w^2 M z subject to G z = 0. Free rigid-body modes are found structurally
+// (free_rigid_modes) and reported as exact zeros; the flexible ones come from
+//  - a dense generalized symmetric eigensolver on an orthonormal basis of
+//    {z : G z = 0, R' M z = 0} when the problem is small, or
+//  - Spectra's shift-invert Lanczos (SymGEigsShiftSolver, ShiftInvert mode) with the shift
+//    sigma < 0 (K - sigma M is then positive definite even when K is singular: a shift at zero is
+//    a known way to lose or invent modes), K - sigma M factored by CHOLMOD (no constraints) or the
+//    saddle-point LDL' (constraints), the rigid modes deflated by M-orthogonal projection.
+//    A Sturm count (Sylvester inertia of K - mu M, mu just above the last mode) proves that
+//    no mode below it was missed; a shortfall triggers a larger Lanczos run.
+// Every mode is checked by its residual ||K z - w^2 M z|| / ||K z|| (the constraint forces
+// G' lambda projected out) and labelled by the DOF family that carries its kinetic energy
+// (>= 95 %), `unknown` otherwise; inside a cluster of equal frequencies the basis is rotated
+// to separate the families first.
+// Statics: K z = f by sparse LDL' (saddle point with constraints). A free rigid-body motion
+// is a mechanism: reported with the motions and the coordinates it moves.
+// FRF: receptance g' (K (1 + i eta) + i w C - w^2 M)^{-1} f by a sparse LU per frequency
+// (direct), or by modal superposition over a stated number of modes.
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "modalbench/rfem/system.hpp"
+
+namespace modalbench::rfem {
+
+enum class EigenMethod { Auto, Dense, ShiftInvert };
+
+struct ModeOptions {
+  int modes = 0;                 ///< lowest modes wanted, rigid ones included
+  EigenMethod method = EigenMethod::Auto;
+  long dense_limit = 600;        ///< Auto: dense when the free unknowns n - m are at most this
+  double tolerance = 1e-10;      ///< Lanczos relative tolerance
+  bool sturm_check = true;       ///< count the eigenvalues below the last mode (sparse path)
+  double residual_warning = 1e-6;
+  unsigned seed = 20240917u;     ///< Lanczos start vector
+};
+
+struct Modes {
+  Eigen::VectorXd lambda;          ///< w^2, ascending; rigid modes exactly 0
+  Eigen::MatrixXd Z;               ///< M-orthonormal shapes over z
+  std::vector<ModeFamily> family;
+  std::vector<double> residuals;   ///< relative eigen-residual per mode
+  int rigid = 0;
+  std::string method;              ///< what was actually used, with the convergence record
+  long iterations = 0;             ///< Lanczos restarts (0 for dense)
+  long operations = 0;             ///< operator applications (solves)
+  long sturm_count = -1;           ///< eigenvalues below the check point; -1 if not checked
+  double max_residual = 0;
+  bool converged = true;
+  std::vector<std::string> warnings;
+  double factor_seconds = 0, eigen_seconds = 0;
+};
+
+/// Throws std::runtime_error on a failed factorization of a matrix that must be definite.
+Modes solve_modes(const Model& model, const System& sys, const ModeOptions& options);
+
+struct StaticSolution {
+  bool ok = false;
+  bool mechanism = false;
+  std::string message;   ///< reason when !ok (mechanism: motions and free coordinates named)
+  Eigen::VectorXd z;
+  double residual = 0;   ///< ||K z - f|| / ||f|| (constraint forces projected out)
+  double factor_seconds = 0, solve_seconds = 0;
+};
+StaticSolution solve_static(const Model& model, const System& sys, const Eigen::VectorXd& f);
+
+struct FrfResult {
+  std::vector<double> omega;                      ///< samples kept
+  std::vector<std::complex<double>> receptance;   ///< g' x / unit force
+  long skipped = 0;                               ///< singular samples (on a natural frequency, w = 0 of a free body)
+  std::string method;
+  double factor_seconds = 0;
+};
+/// Direct: one sparse LU of the (saddle-point) dynamic stiffness per frequency.
+FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
+                     const std::vector<double>& omegas);
+/// Modal superposition over the given modes (all of `modes`).
+FrfResult frf_modal(const Model& model, const System& sys, const Modes& modes, const Eigen::VectorXd& f,
+                    const Eigen::VectorXd& g, const std::vector<double>& omegas);
+
+/// Kinetic-energy share of each mode family in body motion q (indexed by ModeFamily).
+std::vector<double> family_shares(const Model& model, const Eigen::VectorXd& q);
+
+}  // namespace modalbench::rfem

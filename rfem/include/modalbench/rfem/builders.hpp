@@ -1,0 +1,63 @@
+#pragma once
+// Builders: a Scene (or a box spec) -> an rfem Model.
+//
+// Beam (n segments of length d = L / n, the primary division). One SDE at each segment's middle
+// x = (j + 1/2) d with k = [EA, kGA, kGA, GJ, EI_y, EI_z] / d (DESIGN.md 1.1). The secondary
+// division cuts the beam at the SDEs: n + 1 RFEs centred at the nodes x = j d, interior ones of
+// length d, the two end ones of length d / 2 (mass rho A l; Jx = rho Ip l; Jy = m l^2/12 + rho Iy l
+// and Jz alike, the rho I l terms only for Timoshenko scenes). End supports are SDEs to ground at
+// the end points with the scene's springs; +inf holds the component exactly (eliminated).
+// Euler-Bernoulli scenes: the shear springs are rigid, exactly: the generalized coordinates are
+// the transverse displacements of the end points and of the n joints (the rigid elements then
+// form a Hencky chain), so every shear deformation vanishes identically -- no penalty, no
+// multiplier.
+//
+// Plate (nx x ny fragments of the primary division, Delta_l = a / nx, Delta_b = b / ny; seed
+// rfem-plate-appendix.txt with ERRATA.md): RFEs at the fragment corners, types 1-4 with full,
+// half and quarter masses (Table A2.1); each fragment's stiffness goes into four SDEs along its
+// sides with the factor 1/2 of Table A1.1, an interior side collecting both fragments' halves.
+// Shear springs use the scene's multiplicative kappa (Table A1.1 divides by kappa = 1.2 = 1/(5/6)).
+// Kirchhoff scenes: the transverse shear springs are rigid (exact constraints, Lagrange
+// multipliers). Mindlin scenes: shear springs kappa G h, and rotary inertia m h^2 / 12 added.
+// Edges: free, simply supported, clamped or elastic; the support of an edge RFE is an SDE to
+// ground at its centre (on the edge) with the per-length springs times its share of the edge.
+// `bending_correction` (default on) adds, per fragment, the Poisson coupling and the Mindlin
+// twist form that two-point springs cannot represent (see plate_fragment_correction); without
+// it the model is Table A1.1 as printed and converges to a plate without Poisson coupling.
+//
+// Box: nx x ny x nz rigid cubes of edge `edge`, face neighbours joined by an SDE at the shared
+// face centre (k = [E d, kappa G d, kappa G d, G J/d, E d^3/12, E d^3/12], J of a square section).
+
+#include <Eigen/Dense>
+
+#include "modalbench/rfem/model.hpp"
+#include "modalbench/scene.hpp"
+
+namespace modalbench::rfem {
+
+/// Beam scene -> model with `segments` >= 1 primary segments. Throws std::invalid_argument.
+Model build_beam(const Scene& scene, int segments);
+
+struct PlateOptions {
+  int nx = 10, ny = 6;             ///< fragments along x (length a) and y (width b), each >= 1
+  bool bending_correction = true;  ///< per-fragment Poisson coupling and Mindlin twist form
+};
+/// Plate scene -> model. Throws std::invalid_argument.
+Model build_plate(const Scene& scene, const PlateOptions& options);
+
+/// The per-fragment correction (24 x 24 over the full 6-DOF vectors of the corners BL, BR, TL,
+/// TR): D A [nu (gx gy' + gy gx') - (1 - nu)/2 (ga + gb)(ga + gb)'], with the fragment-averaged
+/// curvatures kx = -d(theta_y)/dx (gx), ky = d(theta_x)/dy (gy) and twists d(theta_x)/dx (ga),
+/// d(theta_y)/dy (gb). Added to the side springs it makes the fragment energy
+/// D A / 2 [kx^2 + ky^2 + 2 nu kx ky + (1 - nu)/2 kxy^2] (+ non-negative hourglass terms).
+Eigen::MatrixXd plate_fragment_correction(double D, double nu, double dl, double db);
+
+struct BoxSpec {
+  int nx = 1, ny = 1, nz = 1;  ///< cubes along x, y, z
+  double edge = 0.1;           ///< m
+  Material material;           ///< E, G, rho, kappa used
+  bool clamp_x0 = false;       ///< hold every DOF of the face x = 0 (else free)
+};
+Model build_box(const BoxSpec& spec);
+
+}  // namespace modalbench::rfem

@@ -1,0 +1,83 @@
+#pragma once
+// Sparse factorizations of A = K - sigma M, alone or with constraints G z = 0.
+//
+// KktLdlt: LDL' of the saddle-point matrix [[A + s G'G, s G'], [s G, 0]] without pivoting (the
+// augmentation s G'G changes nothing on G x = 0 but makes A definite there on its own). The
+// ordering is AMD on the pattern of A + G'G for the primal unknowns, with each multiplier placed
+// right after the last primal unknown of its row: every leading block is then
+// [[A11, G1'], [G1, 0]] with A11 a principal block of A and G1 of full row rank, so the
+// factorization exists whenever A is definite on the null space of G. By Sylvester's law the
+// number of negative pivots minus m is the number of eigenvalues of the constrained pencil
+// below sigma (the Sturm count used to prove that no mode was missed). Without constraints it
+// is a plain sparse LDL' (statics, counts).
+// PdFactor: Cholesky of a positive definite A via SuiteSparse CHOLMOD, which chooses a
+// supernodal or simplicial factor from the fill it predicts (supernodal pays on plates and 3D).
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "modalbench/rfem/model.hpp"
+
+namespace modalbench::rfem {
+
+/// Fill-reducing elimination order of a symmetric pattern (SuiteSparse AMD): order[k] is the
+/// unknown eliminated k-th.
+Eigen::VectorXi amd_order(const SpMat& pattern);
+
+/// Indices of rows of G (unit 2-norm rows) that depend linearly on earlier rows in an AMD
+/// elimination order of G G' (pivot of the regularized Gram matrix below 1e-10, i.e. the row
+/// lies within 1e-5 of the span of the others).
+std::vector<long> dependent_rows(const SpMat& G);
+
+class KktLdlt {
+ public:
+  /// Orders and analyses for A's pattern (union of every A to be factored) and G.
+  void analyze(const SpMat& pattern, const SpMat& G);
+  /// Factors with the values of A (same pattern as analysed). False if a pivot was exactly zero.
+  bool factorize(const SpMat& A);
+  /// Primal part x of the KKT solve with right-hand side [b; 0] (x satisfies G x = 0).
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// Negative pivots minus the number of constraints (eigenvalues of the pencil below the shift).
+  long negative_count() const;
+  /// Smallest |pivot| / |diagonal| over the primal pivots, and the primal unknown where it occurs.
+  double smallest_primal_pivot_ratio(long* where) const;
+  long n() const { return n_; }
+  long m() const { return m_; }
+
+ private:
+  SpMat augmented(const SpMat& A) const;  // A + s G'G
+  SpMat kkt(const SpMat& A) const;
+  long n_ = 0, m_ = 0;
+  double s_ = 1;                       // constraint scaling
+  Eigen::VectorXi pos_;                // new position of old unknown (primal 0..n-1, multipliers n..)
+  SpMat G_, GtG_;
+  SpMat K_;                            // the permuted saddle-point matrix (pattern fixed at analysis)
+  std::vector<long> source_;           // per nonzero of K_: index into A's values, or -1 - (index into G's)
+  long a_nnz_ = 0;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
+  Eigen::VectorXd diag_;               // permuted diagonal of the last factored matrix
+  bool analysed_ = false;
+};
+
+/// Cholesky of a symmetric positive definite matrix through CHOLMOD (automatic supernodal choice).
+class PdFactor {
+ public:
+  PdFactor();
+  ~PdFactor();
+  PdFactor(const PdFactor&) = delete;
+  PdFactor& operator=(const PdFactor&) = delete;
+  void analyze(const SpMat& pattern);
+  bool factorize(const SpMat& A);  ///< false if A is not (numerically) positive definite
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  bool supernodal() const;
+  std::string name() const;  ///< "CHOLMOD supernodal LL'" or "CHOLMOD simplicial LL'"
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace modalbench::rfem

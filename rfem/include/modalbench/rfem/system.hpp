@@ -1,0 +1,63 @@
+#pragma once
+// The assembled and reduced rfem system over generalized coordinates z (q = T z).
+//
+// Assembly: K = sum of SDE stiffnesses G' Rb k Rb' G (core's sde_stiffness) and couplings,
+// C alike with the dampings, M = diag over the RFEs (all over the active body DOFs q).
+// Reduction: rigid components to ground (held DOFs) are eliminated exactly by master-slave
+// substitution (the slave is the coordinate with the largest coefficient; the others stay
+// free), giving q = T z; then K_z = T' K T, M_z = T' M T, C_z = T' C T. Rigid components
+// between two RFEs become constraint rows G z = 0 (Lagrange multipliers in every solve); rows
+// made linearly dependent by the holds (e.g. a clamped corner of a Kirchhoff plate) are
+// dropped after a rank-revealing sparse QR.
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "modalbench/rfem/model.hpp"
+
+namespace modalbench::rfem {
+
+struct System {
+  SpMat K, M, C;  ///< over z, full symmetric storage
+  SpMat G;        ///< independent constraint rows (unit 2-norm), m x n; m = 0 without rigid links
+  SpMat T;        ///< q = T z
+  std::vector<std::string> names;  ///< of the coordinates z
+  long held = 0;                   ///< coordinates removed by rigid supports
+  long redundant = 0;              ///< rigid constraints dropped as dependent
+  long n() const { return static_cast<long>(K.rows()); }
+  long m() const { return static_cast<long>(G.rows()); }
+};
+
+System assemble(const Model& model);
+
+/// RFEs whose cell contains P (relative tolerance 1e-9 of the length scale), each with weight
+/// 1 / count: a point on a cell boundary belongs equally to the RFEs that share it.
+std::vector<std::pair<int, double>> containing_elements(const Model& model, const Eigen::Vector3d& P);
+
+/// Generalized force over z of a point action [F; M] (global) applied at P: D(r)' [F; M] on the
+/// RFE containing P (split equally on a cell boundary). Throws std::invalid_argument if no RFE
+/// contains P.
+Eigen::VectorXd point_load(const Model& model, const System& sys, const Eigen::Vector3d& P, const Vector6d& action);
+
+/// Row r with r' z = component `comp` (0..5 of [u; theta]) of the motion of P rigidly attached
+/// to the RFE containing P (u_P = D(r) q; averaged on a cell boundary).
+Eigen::VectorXd point_observer(const Model& model, const System& sys, const Eigen::Vector3d& P, int comp);
+
+/// Rigid-body motions of the whole model that no spring, support or coupling resists.
+struct RigidModes {
+  Eigen::MatrixXd Z;                 ///< n x r over z, M-orthonormal (Z' M Z = I)
+  std::vector<std::string> motions;  ///< e.g. "translation z", one per candidate combination
+};
+/// Exact structural test: the six rigid motions of the model's elements (restricted to the
+/// active DOFs) are tried against every SDE component with nonzero stiffness and every coupling;
+/// the combinations that deform none of them are the free rigid modes.
+RigidModes free_rigid_modes(const Model& model, const System& sys);
+
+/// Largest deformation of any SDE component with nonzero stiffness (translations in m,
+/// rotations times length_scale) under body motion q, relative to the largest motion of an RFE.
+double relative_deformation(const Model& model, const Eigen::VectorXd& q);
+
+}  // namespace modalbench::rfem

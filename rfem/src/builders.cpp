@@ -1,0 +1,379 @@
+#include "modalbench/rfem/builders.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace modalbench::rfem {
+
+namespace {
+
+using Eigen::Vector3d;
+constexpr double pi = std::numbers::pi;
+
+ModeFamily beam_family(int d) {
+  switch (d) {
+    case dofs::Ux: return ModeFamily::Axial;
+    case dofs::Uy:
+    case dofs::Rz: return ModeFamily::BendingXY;
+    case dofs::Uz:
+    case dofs::Ry: return ModeFamily::BendingXZ;
+    case dofs::Rx: return ModeFamily::Torsion;
+    default: return ModeFamily::Unknown;
+  }
+}
+
+Eigen::AlignedBox3d box(double x0, double x1, double y0, double y1, double z0, double z1) {
+  return Eigen::AlignedBox3d(Vector3d(x0, y0, z0), Vector3d(x1, y1, z1));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Beam
+// ---------------------------------------------------------------------------------------------
+
+Model build_beam(const Scene& s, int n) {
+  if (!s.is_beam()) throw std::invalid_argument("build_beam: the scene is not a beam");
+  if (n < 1) throw std::invalid_argument(fmt::format("build_beam: need >= 1 segment (got {})", n));
+  const double L = s.geometry.length, bw = s.geometry.width, bh = s.geometry.height;
+  const Section sec = s.section();
+  const Material& mat = s.material;
+  const bool eb = s.theory == Theory::EulerBernoulli;
+  const double d = L / n;
+
+  Model m;
+  switch (s.physics) {
+    case Physics::Bending: m.active = dofs::kBendingXZ; break;
+    case Physics::Planar: m.active = dofs::kPlanarXZ; break;
+    case Physics::Spatial: m.active = dofs::kSpatial; break;
+  }
+  for (int dof : m.active) m.dof_family.push_back(beam_family(dof));
+  m.length_scale = L;
+  m.loss_factor = mat.loss_factor;
+  m.description = fmt::format("beam: {} segments, {} RFEs ({} at the nodes, half-length ends), {} SDEs, {} {}", n,
+                              n + 1, "centred", n, to_string(s.physics), eb ? "Euler-Bernoulli (rigid shear, exact)"
+                                                                            : "Timoshenko (shear SDE kGA/d)");
+
+  // Rigid elements at the nodes x_j = j d.
+  for (int j = 0; j <= n; ++j) {
+    RigidElement r;
+    const double x = j * d;
+    const double len = (j == 0 || j == n) ? d / 2 : d;
+    r.centre = Vector3d(x, 0, 0);
+    r.mass = mat.rho * sec.A * len;
+    const double own = r.mass * len * len / 12.0;  // the element's length about its centre
+    r.inertia = Vector3d(mat.rho * sec.Ip * len, own + (eb ? 0.0 : mat.rho * sec.Iy * len),
+                         own + (eb ? 0.0 : mat.rho * sec.Iz * len));
+    r.cell = box(std::max(0.0, x - d / 2), std::min(L, x + d / 2), -bw / 2, bw / 2, -bh / 2, bh / 2);
+    r.label = fmt::format("rfe {}", j);
+    m.elements.push_back(r);
+  }
+  // SDEs at the segment middles.
+  const double kGA = mat.kappa * mat.G * sec.A;
+  for (int j = 0; j < n; ++j) {
+    Sde sd;
+    sd.a = j;
+    sd.b = j + 1;
+    sd.point = Vector3d((j + 0.5) * d, 0, 0);
+    sd.stiffness << mat.E * sec.A / d, eb ? 0.0 : kGA / d, eb ? 0.0 : kGA / d, mat.G * sec.J / d, mat.E * sec.Iy / d,
+        mat.E * sec.Iz / d;
+    m.sdes.push_back(sd);
+  }
+  // End supports: SDEs to ground at the end points (the end RFEs' centres).
+  auto support = [&](const Support& sp, int body, double x) {
+    Sde sd;
+    sd.a = body;
+    sd.b = kGround;
+    sd.point = Vector3d(x, 0, 0);
+    sd.stiffness << sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational, sp.rotational;
+    bool any = false;
+    for (int c = 0; c < 6; ++c) any = any || sd.stiffness[c] != 0;
+    if (any) m.sdes.push_back(sd);
+  };
+  support(s.x0, 0, 0.0);
+  support(s.xL, n, L);
+
+  // Euler-Bernoulli: generalized coordinates = transverse displacements of the end points and joints.
+  if (eb) {
+    const int na = m.dofs_per_element();
+    std::vector<Eigen::Triplet<double>> t;
+    int col = 0;
+    // DOFs that are not transverse bending keep their own coordinate.
+    for (int j = 0; j <= n; ++j)
+      for (int k = 0; k < na; ++k) {
+        const int dof = m.active[static_cast<std::size_t>(k)];
+        if (dof == dofs::Ux || dof == dofs::Rx) {
+          t.emplace_back(j * na + k, col++, 1.0);
+          m.basis_names.push_back(fmt::format("{}[rfe {}]", dof_symbol(dof), j));
+        }
+      }
+    // One plane: translation DOF `tr`, rotation DOF `rot`, rot = sign * slope.
+    auto plane = [&](int tr, int rot, double sign, const char* sym) {
+      const int kt = m.local_index(tr), kr = m.local_index(rot);
+      if (kt < 0 || kr < 0) return;
+      const int c0 = col;  // W at x = 0; joints j + 1/2 at c0 + 1 + j; x = L at c0 + n + 1
+      m.basis_names.push_back(fmt::format("{}(x=0)", sym));
+      for (int j = 0; j < n; ++j) m.basis_names.push_back(fmt::format("{}(x={:.6g})", sym, (j + 0.5) * d));
+      m.basis_names.push_back(fmt::format("{}(x={:.6g})", sym, L));
+      col += n + 2;
+      for (int j = 0; j <= n; ++j) {
+        const int left = (j == 0) ? c0 : c0 + j;          // point on the element's left side
+        const int right = (j == n) ? c0 + n + 1 : c0 + 1 + j;
+        const double len = (j == 0 || j == n) ? d / 2 : d;
+        const long rt = static_cast<long>(j) * na + kt, rr = static_cast<long>(j) * na + kr;
+        if (j == 0) t.emplace_back(rt, left, 1.0);
+        else if (j == n) t.emplace_back(rt, right, 1.0);
+        else {
+          t.emplace_back(rt, left, 0.5);
+          t.emplace_back(rt, right, 0.5);
+        }
+        t.emplace_back(rr, right, sign / len);
+        t.emplace_back(rr, left, -sign / len);
+      }
+    };
+    plane(dofs::Uz, dofs::Ry, -1.0, "w");  // theta_y = -dw/dx
+    plane(dofs::Uy, dofs::Rz, +1.0, "v");  // theta_z = +dv/dx
+    m.basis.resize(m.body_dofs(), col);
+    m.basis.setFromTriplets(t.begin(), t.end());
+  }
+
+  // A characteristic low frequency: the lowest of bending (cantilever-like) and axial/torsion.
+  double hint = 0.35 * std::pow(pi / L, 2) * std::sqrt(mat.E * std::min(sec.Iy, sec.Iz) / (mat.rho * sec.A));
+  if (s.physics != Physics::Bending) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.E / mat.rho));
+  if (s.physics == Physics::Spatial) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.G * sec.J / (mat.rho * sec.Ip)));
+  m.omega_hint = hint;
+  m.check();
+  return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Plate
+// ---------------------------------------------------------------------------------------------
+
+Eigen::MatrixXd plate_fragment_correction(double D, double nu, double dl, double db) {
+  // Corner order BL, BR, TL, TR; DOF offset 6 k + d.
+  enum { BL = 0, BR = 1, TL = 2, TR = 3 };
+  auto at = [](int corner, int dof) { return 6 * corner + dof; };
+  Eigen::VectorXd gx = Eigen::VectorXd::Zero(24), gy = gx, ga = gx, gb = gx;
+  // kx = -d(theta_y)/dx, averaged over the bottom and top sides.
+  gx[at(BL, dofs::Ry)] = 0.5 / dl;
+  gx[at(BR, dofs::Ry)] = -0.5 / dl;
+  gx[at(TL, dofs::Ry)] = 0.5 / dl;
+  gx[at(TR, dofs::Ry)] = -0.5 / dl;
+  // ky = d(theta_x)/dy, averaged over the left and right sides.
+  gy[at(TL, dofs::Rx)] = 0.5 / db;
+  gy[at(BL, dofs::Rx)] = -0.5 / db;
+  gy[at(TR, dofs::Rx)] = 0.5 / db;
+  gy[at(BR, dofs::Rx)] = -0.5 / db;
+  // twists: d(theta_x)/dx (x sides) and d(theta_y)/dy (y sides); kxy = ga - gb.
+  ga[at(BR, dofs::Rx)] = 0.5 / dl;
+  ga[at(BL, dofs::Rx)] = -0.5 / dl;
+  ga[at(TR, dofs::Rx)] = 0.5 / dl;
+  ga[at(TL, dofs::Rx)] = -0.5 / dl;
+  gb[at(TL, dofs::Ry)] = 0.5 / db;
+  gb[at(BL, dofs::Ry)] = -0.5 / db;
+  gb[at(TR, dofs::Ry)] = 0.5 / db;
+  gb[at(BR, dofs::Ry)] = -0.5 / db;
+  const double A = dl * db;
+  const Eigen::VectorXd s = ga + gb;
+  return D * A * (nu * (gx * gy.transpose() + gy * gx.transpose()) - 0.5 * (1.0 - nu) * s * s.transpose());
+}
+
+Model build_plate(const Scene& s, const PlateOptions& o) {
+  if (!s.is_plate()) throw std::invalid_argument("build_plate: the scene is not a plate");
+  if (o.nx < 1 || o.ny < 1)
+    throw std::invalid_argument(fmt::format("build_plate: need >= 1 fragment per side (got {}x{})", o.nx, o.ny));
+  const double a = s.geometry.length, b = s.geometry.width, h = s.geometry.height;
+  const Material& mat = s.material;
+  const bool kirchhoff = s.theory == Theory::Kirchhoff;
+  const int nx = o.nx, ny = o.ny;
+  const double dl = a / nx, db = b / ny;
+  const double D = s.plate_D();
+  const double Gh3_6 = mat.G * h * h * h / 6.0;  // = D (1 - nu): twisting rigidity
+
+  Model m;
+  m.active = dofs::kPlate;
+  m.dof_family.assign(m.active.size(), ModeFamily::Plate);
+  m.length_scale = std::max(a, b);
+  m.loss_factor = mat.loss_factor;
+  m.description = fmt::format(
+      "plate: {}x{} fragments, {}x{} RFEs at the fragment corners (Table A2.1 types 1-4), {} shear{}", nx, ny, nx + 1,
+      ny + 1, kirchhoff ? "rigid transverse shear (Kirchhoff, exact constraints)" : "springs kGh (Mindlin)",
+      o.bending_correction ? ", per-fragment Poisson/twist correction" : ", Table A1.1 springs only (no Poisson coupling)");
+
+  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
+  auto half = [](int i, int n) { return (i == 0 || i == n) ? 0.5 : 1.0; };
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      RigidElement r;
+      const double x = i * dl, y = j * db, lx = dl * half(i, nx), ly = db * half(j, ny);
+      r.centre = Vector3d(x, y, 0);
+      r.mass = mat.rho * h * lx * ly;  // Table A2.1: full, half (types 2, 3) or quarter (type 4)
+      const double rot = kirchhoff ? 0.0 : r.mass * h * h / 12.0;
+      r.inertia = Vector3d(r.mass * ly * ly / 12.0 + rot, r.mass * lx * lx / 12.0 + rot,
+                           r.mass * (lx * lx + ly * ly) / 12.0);
+      r.cell = box(std::max(0.0, x - dl / 2), std::min(a, x + dl / 2), std::max(0.0, y - db / 2),
+                   std::min(b, y + db / 2), -h / 2, h / 2);
+      r.label = fmt::format("rfe ({},{})", i, j);
+      m.elements.push_back(r);
+    }
+
+  // Table A1.1 in-plane torsion constant of the fragment (inactive in plate bending; kept for completeness).
+  const double lmin = std::min(dl, db), lmax = std::max(dl, db);
+  double series = 0;
+  for (int k = 0; k < 50; ++k)
+    series += std::tanh((2 * k + 1) * pi * lmax / (2 * lmin)) / std::pow(2 * k + 1, 5);
+  const double K1 = 1.0 / 3.0 - 64.0 * lmin / (std::pow(pi, 5) * lmax) * series;
+  const double Js = K1 * lmin * lmin * lmin * lmax;
+  const double k6 = mat.G * Js / (4 * h);
+
+  const double shear = kirchhoff ? kInf : mat.kappa * mat.G * h;
+  // x-direction SDEs: sides (i, j)-(i + 1, j); tributary width: both adjacent fragments' halves.
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      Sde sd;
+      sd.a = id(i, j);
+      sd.b = id(i + 1, j);
+      sd.point = Vector3d((i + 0.5) * dl, j * db, 0);
+      const double r = db * half(j, ny) / dl;
+      sd.stiffness << mat.E * h * r, shear * r, shear * r, Gh3_6 * r, D * r, k6;
+      m.sdes.push_back(sd);
+    }
+  // y-direction SDEs: local x along global y, local y along -x, local z along z.
+  Eigen::Matrix3d Ry;
+  Ry << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      Sde sd;
+      sd.a = id(i, j);
+      sd.b = id(i, j + 1);
+      sd.point = Vector3d(i * dl, (j + 0.5) * db, 0);
+      sd.axes = Ry;
+      const double r = dl * half(i, nx) / db;
+      sd.stiffness << mat.E * h * r, shear * r, shear * r, Gh3_6 * r, D * r, k6;
+      m.sdes.push_back(sd);
+    }
+  // Poisson coupling and Mindlin twist per fragment.
+  if (o.bending_correction) {
+    const auto Kc = std::make_shared<const Eigen::MatrixXd>(plate_fragment_correction(D, mat.nu, dl, db));
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) m.couplings.push_back({{id(i, j), id(i + 1, j), id(i, j + 1), id(i + 1, j + 1)}, Kc});
+  }
+  // Edge supports: the per-length springs act along the RFE's share of the edge (length l, centred
+  // at P). Integrated over that segment of a rigid element, the translational layer k_t gives
+  // k_t l on w(P) and k_t l^3 / 12 on the tilt along the edge (rotation about the in-plane
+  // normal); the rotational layer gives k_r l about the edge. A rigid edge thus holds w and the
+  // tilt (the hard simple support of Mindlin plates, and w = 0 all along a Kirchhoff edge).
+  auto edge = [&](const Support& sp, bool along_x, int fixed) {
+    if (sp.translational == 0 && sp.rotational == 0) return;
+    const int count = along_x ? nx : ny;
+    for (int k = 0; k <= count; ++k) {
+      const int body = along_x ? id(k, fixed) : id(fixed, k);
+      const auto& cell = m.elements[static_cast<std::size_t>(body)].cell;
+      Sde sd;
+      sd.a = body;
+      sd.b = kGround;
+      double share;
+      if (along_x) {  // edge y = 0 or b: runs along x, tilt is theta_y, the edge axis is x
+        share = cell.max().x() - cell.min().x();
+        sd.point = Vector3d(0.5 * (cell.min().x() + cell.max().x()), fixed * db, 0);
+        sd.stiffness[4] = sp.translational * share * share * share / 12.0;
+        sd.stiffness[3] = sp.rotational * share;
+      } else {  // edge x = 0 or a: runs along y, tilt is theta_x, the edge axis is y
+        share = cell.max().y() - cell.min().y();
+        sd.point = Vector3d(fixed * dl, 0.5 * (cell.min().y() + cell.max().y()), 0);
+        sd.stiffness[3] = sp.translational * share * share * share / 12.0;
+        sd.stiffness[4] = sp.rotational * share;
+      }
+      sd.stiffness[2] = sp.translational * share;
+      m.sdes.push_back(sd);
+    }
+  };
+  edge(s.y0, true, 0);
+  edge(s.yB, true, ny);
+  edge(s.x0, false, 0);
+  edge(s.xL, false, nx);
+
+  m.omega_hint = 0.3 * pi * pi * (1 / (a * a) + 1 / (b * b)) * std::sqrt(D / (mat.rho * h));
+  m.check();
+  return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Box of rigid cubes
+// ---------------------------------------------------------------------------------------------
+
+Model build_box(const BoxSpec& sp) {
+  if (sp.nx < 1 || sp.ny < 1 || sp.nz < 1 || !(sp.edge > 0))
+    throw std::invalid_argument("build_box: need >= 1 cube per direction and edge > 0");
+  const Material& mat = sp.material;
+  if (!(mat.E > 0 && mat.G > 0 && mat.rho > 0 && mat.kappa > 0))
+    throw std::invalid_argument("build_box: material E, G, rho, kappa must be > 0");
+  const double d = sp.edge;
+  const Section sq = rectangular_section(d, d);
+  Model m;
+  m.active = dofs::kSpatial;
+  m.dof_family.assign(6, ModeFamily::Unknown);
+  m.length_scale = d * std::max({sp.nx, sp.ny, sp.nz});
+  m.loss_factor = mat.loss_factor;
+  m.description = fmt::format("box: {}x{}x{} rigid cubes of edge {} m, face SDEs{}", sp.nx, sp.ny, sp.nz, d,
+                              sp.clamp_x0 ? ", face x = 0 clamped" : ", free");
+  auto id = [&](int i, int j, int k) { return (k * sp.ny + j) * sp.nx + i; };
+  for (int k = 0; k < sp.nz; ++k)
+    for (int j = 0; j < sp.ny; ++j)
+      for (int i = 0; i < sp.nx; ++i) {
+        RigidElement r;
+        r.centre = Vector3d((i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d);
+        r.mass = mat.rho * d * d * d;
+        r.inertia = Vector3d::Constant(r.mass * d * d / 6.0);
+        r.cell = box(i * d, (i + 1) * d, j * d, (j + 1) * d, k * d, (k + 1) * d);
+        r.label = fmt::format("cube ({},{},{})", i, j, k);
+        m.elements.push_back(r);
+      }
+  Vector6d kk;
+  kk << mat.E * d, mat.kappa * mat.G * d, mat.kappa * mat.G * d, mat.G * sq.J / d, mat.E * sq.Iy / d, mat.E * sq.Iz / d;
+  const Eigen::Vector3d ex = Vector3d::UnitX(), ey = Vector3d::UnitY(), ez = Vector3d::UnitZ();
+  Eigen::Matrix3d Rx, Ry, Rz;
+  Rx << ex, ey, ez;
+  Ry << ey, ez, ex;
+  Rz << ez, ex, ey;
+  for (int k = 0; k < sp.nz; ++k)
+    for (int j = 0; j < sp.ny; ++j)
+      for (int i = 0; i < sp.nx; ++i) {
+        const int me = id(i, j, k);
+        const Vector3d c = m.elements[static_cast<std::size_t>(me)].centre;
+        auto link = [&](int other, const Eigen::Matrix3d& R, const Vector3d& dir) {
+          Sde sd;
+          sd.a = me;
+          sd.b = other;
+          sd.point = c + 0.5 * d * dir;
+          sd.axes = R;
+          sd.stiffness = kk;
+          m.sdes.push_back(sd);
+        };
+        if (i + 1 < sp.nx) link(id(i + 1, j, k), Rx, ex);
+        if (j + 1 < sp.ny) link(id(i, j + 1, k), Ry, ey);
+        if (k + 1 < sp.nz) link(id(i, j, k + 1), Rz, ez);
+        if (sp.clamp_x0 && i == 0) {
+          Sde g;
+          g.a = me;
+          g.b = kGround;
+          g.point = c - 0.5 * d * ex;
+          g.stiffness = Vector6d::Constant(kInf);
+          m.sdes.push_back(g);
+        }
+      }
+  const double Lmax = m.length_scale;
+  const double bar = 0.5 * pi / Lmax * std::sqrt(mat.E / mat.rho);
+  const double tmin = d * std::min({sp.nx, sp.ny, sp.nz});
+  const double bend = 0.35 * std::pow(pi / Lmax, 2) * std::sqrt(mat.E * tmin * tmin / (12 * mat.rho));
+  m.omega_hint = std::min(bar, bend);
+  m.check();
+  return m;
+}
+
+}  // namespace modalbench::rfem

@@ -1,0 +1,433 @@
+#include "modalbench/rfem/system.hpp"
+
+#include "modalbench/rfem/factor.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace modalbench::rfem {
+
+namespace {
+
+using Triplet = Eigen::Triplet<double>;
+using SparseRow = std::vector<std::pair<long, double>>;  // (index, coefficient)
+
+Matrix6d block_rotation(const Eigen::Matrix3d& R) {
+  Matrix6d Rb = Matrix6d::Zero();
+  Rb.topLeftCorner<3, 3>() = R;
+  Rb.bottomRightCorner<3, 3>() = R;
+  return Rb;
+}
+
+/// Master-slave elimination of held components: z0 = S z.
+class Eliminator {
+ public:
+  explicit Eliminator(long n0) : expr_(static_cast<std::size_t>(n0)), slave_(static_cast<std::size_t>(n0), 0) {}
+
+  /// Adds the constraint row . z0 = 0. Returns false if it was redundant.
+  bool add(const SparseRow& row) {
+    std::map<long, double> acc;
+    double scale = 0;
+    for (auto [j, c] : row) {
+      scale = std::max(scale, std::abs(c));
+      expand(j, c, acc);
+    }
+    long s = -1;
+    double best = 0;
+    for (auto [j, c] : acc)
+      if (std::abs(c) > best) best = std::abs(c), s = j;
+    if (s < 0 || best <= 1e-12 * scale) return false;
+    SparseRow e;
+    for (auto [j, c] : acc)
+      if (j != s && std::abs(c) > 1e-14 * best) e.emplace_back(j, -c / acc[s]);
+    expr_[static_cast<std::size_t>(s)] = std::move(e);
+    slave_[static_cast<std::size_t>(s)] = 1;
+    return true;
+  }
+
+  bool is_slave(long j) const { return slave_[static_cast<std::size_t>(j)] != 0; }
+
+  /// S with z0 = S z over the free coordinates (in their original order).
+  SpMat substitution(std::vector<long>& free_index) const {
+    const long n0 = static_cast<long>(slave_.size());
+    free_index.assign(static_cast<std::size_t>(n0), -1);
+    long nf = 0;
+    for (long j = 0; j < n0; ++j)
+      if (!is_slave(j)) free_index[static_cast<std::size_t>(j)] = nf++;
+    std::vector<Triplet> t;
+    for (long j = 0; j < n0; ++j) {
+      if (!is_slave(j)) {
+        t.emplace_back(j, free_index[static_cast<std::size_t>(j)], 1.0);
+        continue;
+      }
+      std::map<long, double> acc;
+      expand(j, 1.0, acc);
+      for (auto [k, c] : acc)
+        if (c != 0.0) t.emplace_back(j, free_index[static_cast<std::size_t>(k)], c);
+    }
+    SpMat S(n0, nf);
+    S.setFromTriplets(t.begin(), t.end());
+    return S;
+  }
+
+ private:
+  // acc += c * (z0_j expressed in the currently free coordinates).
+  void expand(long j, double c, std::map<long, double>& acc) const {
+    if (!is_slave(j)) {
+      acc[j] += c;
+      return;
+    }
+    for (auto [k, ck] : expr_[static_cast<std::size_t>(j)]) expand(k, c * ck, acc);
+  }
+
+  std::vector<SparseRow> expr_;
+  std::vector<char> slave_;
+};
+
+/// 6-vector of body e from the active vector q (inactive components zero).
+Vector6d body_vector(const Model& m, const Eigen::VectorXd& q, int e) {
+  Vector6d v = Vector6d::Zero();
+  const int na = m.dofs_per_element();
+  for (int k = 0; k < na; ++k) v[m.active[static_cast<std::size_t>(k)]] = q[static_cast<long>(e) * na + k];
+  return v;
+}
+
+double tolerance_length(const Model& m) { return 1e-9 * m.length_scale; }
+
+}  // namespace
+
+System assemble(const Model& m) {
+  m.check();
+  const int na = m.dofs_per_element();
+  const long nq = m.body_dofs();
+  std::vector<SparseRow> holds, links;
+
+  // Active entries of a row over one body's 6-vector, as a sparse row over q.
+  auto rows_of = [&](const Eigen::Matrix<double, 1, 6>& r, int body, SparseRow& out) {
+    for (int k = 0; k < na; ++k) {
+      const double v = r[m.active[static_cast<std::size_t>(k)]];
+      if (v != 0.0) out.emplace_back(static_cast<long>(body) * na + k, v);
+    }
+  };
+  auto finite_part = [](const Vector6d& k) {
+    Vector6d f = k;
+    for (int c = 0; c < 6; ++c)
+      if (std::isinf(f[c])) f[c] = 0;
+    return f;
+  };
+
+  // Pass 1: rigid components -> held rows (to ground) and constraint rows (between RFEs).
+  for (const Sde& sd : m.sdes) {
+    std::vector<int> rigid;
+    for (int c = 0; c < 6; ++c)
+      if (std::isinf(sd.stiffness[c])) rigid.push_back(c);
+    if (rigid.empty()) continue;
+    const Matrix6d Rt = block_rotation(sd.axes).transpose();
+    const Matrix6d Wa = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre);
+    if (sd.b == kGround) {
+      for (int c : rigid) {
+        SparseRow row;
+        rows_of(Wa.row(c), sd.a, row);
+        if (!row.empty()) holds.push_back(std::move(row));
+      }
+    } else {
+      const Matrix6d Wb = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre);
+      for (int c : rigid) {
+        SparseRow row;
+        rows_of(-Wa.row(c), sd.a, row);
+        rows_of(Wb.row(c), sd.b, row);
+        if (!row.empty()) links.push_back(std::move(row));
+      }
+    }
+  }
+
+  // Generalized coordinates of the builder (or q itself), then the held ones eliminated: q = T z.
+  SpMat B;
+  std::vector<std::string> names0;
+  if (m.basis.cols() > 0) {
+    B = m.basis;
+    names0 = m.basis_names;
+  } else {
+    B.resize(nq, nq);
+    B.setIdentity();
+    for (long i = 0; i < nq; ++i) names0.push_back(m.dof_name(i));
+  }
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Brow = B;
+  auto to_z0 = [&](const SparseRow& row) {
+    std::map<long, double> acc;
+    for (auto [i, c] : row)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Brow, i); it; ++it)
+        acc[it.col()] += c * it.value();
+    return SparseRow(acc.begin(), acc.end());
+  };
+  System sys;
+  Eliminator elim(B.cols());
+  for (const auto& h : holds)
+    if (elim.add(to_z0(h))) ++sys.held;
+  std::vector<long> free_index;
+  sys.T = B * elim.substitution(free_index);
+  sys.T.makeCompressed();
+  for (std::size_t j = 0; j < free_index.size(); ++j)
+    if (free_index[j] >= 0) sys.names.push_back(names0[j]);
+  const long n = sys.T.cols();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Tr = sys.T;
+  const int* tp = Tr.outerIndexPtr();
+  const int* ti = Tr.innerIndexPtr();
+  const double* tv = Tr.valuePtr();
+
+  // Pass 2: element matrices scattered straight into z (K_z = T' K T without forming K).
+  std::vector<Triplet> tk, tc, tm;
+  tk.reserve(static_cast<std::size_t>(m.sdes.size()) * 4 * na * na + m.couplings.size() * 16 * na * na);
+  auto scatter_z = [&](std::vector<Triplet>& t, const Eigen::MatrixXd& Ke, const std::vector<int>& bodies) {
+    const int nb = static_cast<int>(bodies.size());
+    for (int bi = 0; bi < nb; ++bi)
+      for (int i = 0; i < na; ++i) {
+        const long qi = static_cast<long>(bodies[static_cast<std::size_t>(bi)]) * na + i;
+        for (int bj = 0; bj < nb; ++bj)
+          for (int j = 0; j < na; ++j) {
+            const double v = Ke(bi * na + i, bj * na + j);
+            if (v == 0.0) continue;
+            const long qj = static_cast<long>(bodies[static_cast<std::size_t>(bj)]) * na + j;
+            for (int p = tp[qi]; p < tp[qi + 1]; ++p)
+              for (int r = tp[qj]; r < tp[qj + 1]; ++r) t.emplace_back(ti[p], ti[r], v * tv[p] * tv[r]);
+          }
+      }
+  };
+  for (const Sde& sd : m.sdes) {
+    const Vector6d kf = finite_part(sd.stiffness);
+    const bool stiff = kf.any(), damped = sd.damping.any();
+    if (!stiff && !damped) continue;
+    const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
+    if (sd.b == kGround) {
+      const std::vector<int> bodies = {sd.a};
+      if (stiff) scatter_z(tk, restrict_dofs(sde_to_ground(ra, sd.axes, kf), m.active), bodies);
+      if (damped) scatter_z(tc, restrict_dofs(sde_to_ground(ra, sd.axes, sd.damping), m.active), bodies);
+    } else {
+      const Eigen::Vector3d rb = sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre;
+      const std::vector<int> bodies = {sd.a, sd.b};
+      if (stiff) scatter_z(tk, restrict_dofs(sde_stiffness(ra, rb, sd.axes, kf), m.active), bodies);
+      if (damped) scatter_z(tc, restrict_dofs(sde_stiffness(ra, rb, sd.axes, sd.damping), m.active), bodies);
+    }
+  }
+  std::map<const Eigen::MatrixXd*, Eigen::MatrixXd> restricted;  // shared blocks restricted once
+  for (const Coupling& cp : m.couplings) {
+    auto it = restricted.find(cp.stiffness.get());
+    if (it == restricted.end()) it = restricted.emplace(cp.stiffness.get(), restrict_dofs(*cp.stiffness, m.active)).first;
+    scatter_z(tk, it->second, cp.elements);
+  }
+  for (std::size_t e = 0; e < m.elements.size(); ++e)
+    for (int k = 0; k < na; ++k) {
+      const int d = m.active[static_cast<std::size_t>(k)];
+      const auto& r = m.elements[e];
+      const double mass = d < 3 ? r.mass : r.inertia[d - 3];
+      const long q = static_cast<long>(e) * na + k;
+      for (int p = tp[q]; p < tp[q + 1]; ++p)
+        for (int s = tp[q]; s < tp[q + 1]; ++s) tm.emplace_back(ti[p], ti[s], mass * tv[p] * tv[s]);
+    }
+  sys.K.resize(n, n);
+  sys.C.resize(n, n);
+  sys.M.resize(n, n);
+  sys.K.setFromTriplets(tk.begin(), tk.end());
+  sys.C.setFromTriplets(tc.begin(), tc.end());
+  sys.M.setFromTriplets(tm.begin(), tm.end());
+  sys.K.makeCompressed();
+  sys.C.makeCompressed();
+  sys.M.makeCompressed();
+
+  // Rigid links between RFEs: constraint rows over z, normalised, dependent ones dropped.
+  std::vector<Triplet> tg;
+  long rows = 0;
+  for (const SparseRow& link : links) {
+    std::map<long, double> acc;
+    double orig = 0;
+    for (auto [i, c] : link) {
+      orig += c * c;
+      for (int p = tp[i]; p < tp[i + 1]; ++p) acc[ti[p]] += c * tv[p];
+    }
+    double norm2 = 0;
+    for (auto [j, c] : acc) norm2 += c * c;
+    if (norm2 <= 1e-24 * orig) {
+      ++sys.redundant;
+      continue;
+    }
+    const double scale = 1.0 / std::sqrt(norm2);
+    for (auto [j, c] : acc)
+      if (c != 0.0) tg.emplace_back(rows, j, c * scale);
+    ++rows;
+  }
+  SpMat G(rows, n);
+  G.setFromTriplets(tg.begin(), tg.end());
+  const std::vector<long> dep = dependent_rows(G);
+  if (!dep.empty()) {
+    std::vector<long> newrow(static_cast<std::size_t>(rows), 0);
+    for (long r : dep) newrow[static_cast<std::size_t>(r)] = -1;
+    long nr = 0;
+    for (auto& v : newrow)
+      if (v == 0) v = nr++;
+    std::vector<Triplet> kept;
+    for (const auto& t : tg)
+      if (newrow[static_cast<std::size_t>(t.row())] >= 0)
+        kept.emplace_back(newrow[static_cast<std::size_t>(t.row())], t.col(), t.value());
+    sys.redundant += static_cast<long>(dep.size());
+    G.resize(nr, n);
+    G.setFromTriplets(kept.begin(), kept.end());
+  }
+  sys.G = G;
+  sys.G.makeCompressed();
+  return sys;
+}
+
+std::vector<std::pair<int, double>> containing_elements(const Model& m, const Eigen::Vector3d& P) {
+  const double tol = tolerance_length(m);
+  std::vector<int> hits;
+  for (std::size_t e = 0; e < m.elements.size(); ++e) {
+    const auto& c = m.elements[e].cell;
+    if ((P.array() >= c.min().array() - tol).all() && (P.array() <= c.max().array() + tol).all())
+      hits.push_back(static_cast<int>(e));
+  }
+  std::vector<std::pair<int, double>> out;
+  for (int e : hits) out.emplace_back(e, 1.0 / static_cast<double>(hits.size()));
+  return out;
+}
+
+Eigen::VectorXd point_load(const Model& m, const System& sys, const Eigen::Vector3d& P, const Vector6d& action) {
+  const auto hits = containing_elements(m, P);
+  if (hits.empty())
+    throw std::invalid_argument(fmt::format("rfem: the point ({}, {}, {}) lies in no rigid element", P.x(), P.y(), P.z()));
+  const int na = m.dofs_per_element();
+  Eigen::VectorXd fq = Eigen::VectorXd::Zero(m.body_dofs());
+  for (auto [e, w] : hits) {
+    const Vector6d f = attachment(P - m.elements[static_cast<std::size_t>(e)].centre).transpose() * action * w;
+    for (int k = 0; k < na; ++k) fq[static_cast<long>(e) * na + k] += f[m.active[static_cast<std::size_t>(k)]];
+  }
+  return sys.T.transpose() * fq;
+}
+
+Eigen::VectorXd point_observer(const Model& m, const System& sys, const Eigen::Vector3d& P, int comp) {
+  return point_load(m, sys, P, Vector6d::Unit(comp));
+}
+
+double relative_deformation(const Model& m, const Eigen::VectorXd& q) {
+  const double L = m.length_scale;
+  double motion = 0;
+  for (std::size_t e = 0; e < m.elements.size(); ++e) {
+    const Vector6d v = body_vector(m, q, static_cast<int>(e));
+    motion = std::max(motion, v.head<3>().norm() + L * v.tail<3>().norm());
+  }
+  if (motion == 0) return 0;
+  double worst = 0;
+  for (const Sde& sd : m.sdes) {
+    const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
+    Vector6d rel = -(attachment(ra) * body_vector(m, q, sd.a));
+    if (sd.b != kGround)
+      rel += attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre) * body_vector(m, q, sd.b);
+    const Vector6d loc = block_rotation(sd.axes).transpose() * rel;
+    for (int c = 0; c < 6; ++c)
+      if (sd.stiffness[c] != 0) worst = std::max(worst, std::abs(loc[c]) * (c < 3 ? 1.0 : L));
+  }
+  for (const Coupling& cp : m.couplings) {
+    Eigen::VectorXd v(6 * static_cast<long>(cp.elements.size()));
+    for (std::size_t i = 0; i < cp.elements.size(); ++i) v.segment<6>(6 * static_cast<long>(i)) = body_vector(m, q, cp.elements[i]);
+    const double nk = cp.stiffness->norm();
+    if (nk > 0) worst = std::max(worst, (*cp.stiffness * v).norm() / nk * L);
+  }
+  return worst / motion;
+}
+
+RigidModes free_rigid_modes(const Model& m, const System& sys) {
+  const double L = m.length_scale;
+  const int na = m.dofs_per_element();
+  const long nq = m.body_dofs();
+  Eigen::Vector3d c0 = Eigen::Vector3d::Zero();
+  for (const auto& e : m.elements) c0 += e.centre;
+  c0 /= static_cast<double>(m.elements.size());
+  static const char* kNames[6] = {"translation x", "translation y", "translation z",
+                                  "rotation about x", "rotation about y", "rotation about z"};
+  std::vector<Eigen::VectorXd> cand;
+  std::vector<std::string> cand_names;
+  for (int c = 0; c < 6; ++c) {
+    const Vector6d e6 = Vector6d::Unit(c) * (c < 3 ? 1.0 : 1.0 / L);
+    Eigen::VectorXd q(nq);
+    for (std::size_t e = 0; e < m.elements.size(); ++e) {
+      const Vector6d v = attachment(m.elements[e].centre - c0) * e6;
+      for (int k = 0; k < na; ++k) q[static_cast<long>(e) * na + k] = v[m.active[static_cast<std::size_t>(k)]];
+    }
+    if (q.norm() > 1e-12 * std::sqrt(static_cast<double>(m.elements.size()))) {
+      cand.push_back(q);
+      cand_names.push_back(kNames[c]);
+    }
+  }
+  RigidModes out;
+  out.Z.resize(sys.n(), 0);
+  if (cand.empty()) return out;
+  const long nc = static_cast<long>(cand.size());
+
+  // Deformation of every stiff component under each candidate: A' A accumulated directly.
+  Eigen::MatrixXd AtA = Eigen::MatrixXd::Zero(nc, nc);
+  for (const Sde& sd : m.sdes) {
+    const Matrix6d Rt = block_rotation(sd.axes).transpose();
+    const Matrix6d Wa = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre);
+    Matrix6d Wb = Matrix6d::Zero();
+    if (sd.b != kGround) Wb = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre);
+    Eigen::Matrix<double, 6, Eigen::Dynamic> def(6, nc);
+    for (long j = 0; j < nc; ++j) {
+      Vector6d d6 = -Wa * body_vector(m, cand[static_cast<std::size_t>(j)], sd.a);
+      if (sd.b != kGround) d6 += Wb * body_vector(m, cand[static_cast<std::size_t>(j)], sd.b);
+      def.col(j) = d6;
+    }
+    for (int c = 0; c < 6; ++c) {
+      if (sd.stiffness[c] == 0) continue;
+      const Eigen::RowVectorXd r = def.row(c) * (c < 3 ? 1.0 : L);
+      AtA += r.transpose() * r;
+    }
+  }
+  for (const Coupling& cp : m.couplings) {
+    const double nk = cp.stiffness->norm();
+    if (nk == 0) continue;
+    Eigen::MatrixXd V(6 * static_cast<long>(cp.elements.size()), nc);
+    for (long j = 0; j < nc; ++j)
+      for (std::size_t i = 0; i < cp.elements.size(); ++i)
+        V.block<6, 1>(6 * static_cast<long>(i), j) = body_vector(m, cand[static_cast<std::size_t>(j)], cp.elements[i]);
+    const Eigen::MatrixXd F = *cp.stiffness * V / nk * L;
+    AtA += F.transpose() * F;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(AtA);
+  std::vector<long> null_cols;
+  for (long i = 0; i < nc; ++i)
+    if (std::sqrt(std::max(0.0, es.eigenvalues()[i])) <= 1e-9) null_cols.push_back(i);
+  if (null_cols.empty()) return out;
+
+  Eigen::MatrixXd Cq(nq, nc);
+  for (long j = 0; j < nc; ++j) Cq.col(j) = cand[static_cast<std::size_t>(j)];
+  // Least-squares map to z (T has full column rank): (T'T) z = T' q.
+  SpMat TtT = sys.T.transpose() * sys.T;
+  Eigen::SimplicialLDLT<SpMat> ldlt(TtT);
+  if (ldlt.info() != Eigen::Success) throw std::runtime_error("rfem: T'T factorization failed");
+  std::vector<Eigen::VectorXd> zs;
+  for (long i : null_cols) {
+    const Eigen::VectorXd nv = es.eigenvectors().col(i);
+    const Eigen::VectorXd q = Cq * nv;
+    const Eigen::VectorXd z = ldlt.solve(sys.T.transpose() * q);
+    if ((sys.T * z - q).norm() > 1e-8 * q.norm()) continue;  // not representable (held)
+    zs.push_back(z);
+    std::string desc;
+    for (long j = 0; j < nc; ++j)
+      if (std::abs(nv[j]) > 1e-6) desc += (desc.empty() ? "" : " + ") + cand_names[static_cast<std::size_t>(j)];
+    out.motions.push_back(desc);
+  }
+  if (zs.empty()) return out;
+  Eigen::MatrixXd Z(sys.n(), static_cast<long>(zs.size()));
+  for (std::size_t i = 0; i < zs.size(); ++i) Z.col(static_cast<long>(i)) = zs[i];
+  const Eigen::MatrixXd S = Z.transpose() * (sys.M * Z);
+  Eigen::LLT<Eigen::MatrixXd> llt(S);
+  if (llt.info() != Eigen::Success) throw std::runtime_error("rfem: rigid-mode Gram matrix not positive definite");
+  out.Z = llt.matrixU().solve<Eigen::OnTheRight>(Z);  // Z U^{-1}: M-orthonormal
+  return out;
+}
+
+}  // namespace modalbench::rfem
