@@ -17,7 +17,7 @@ namespace {
 // of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
 // of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
 template <class Mat>
-Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry) {
+Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_det_tdf) {
   const Eigen::Index n2 = A.rows();
   if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
   const Eigen::Index m = n2 / 2;
@@ -49,6 +49,11 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry) {
   const auto Tdd = T.topLeftCorner(m, m), Tdf = T.topRightCorner(m, m);
   const auto Tfd = T.bottomLeftCorner(m, m), Tff = T.bottomRightCorner(m, m);
   Eigen::PartialPivLU<Mat> lu(Tdf);
+  if (log_abs_det_tdf) {
+    double l = 0;
+    for (Eigen::Index i = 0; i < m; ++i) l += std::log(std::abs(lu.matrixLU()(i, i)));
+    *log_abs_det_tdf = l;
+  }
   const Mat TdfInvTdd = lu.solve(Mat(Tdd));
   const Mat TdfInv = lu.inverse();
   Mat K(n2, n2);
@@ -63,12 +68,14 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry) {
 
 }  // namespace
 
-Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry) {
-  return segment_dsm_impl(A, h, asymmetry);
+Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry,
+                                          double* log_abs_det_tdf) {
+  return segment_dsm_impl(A, h, asymmetry, log_abs_det_tdf);
 }
 
-Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry) {
-  return segment_dsm_impl(A, h, asymmetry);
+Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry,
+                                           double* log_abs_det_tdf) {
+  return segment_dsm_impl(A, h, asymmetry, log_abs_det_tdf);
 }
 
 namespace detail {
@@ -427,9 +434,10 @@ LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint
 
 namespace {
 
-/// Brent's method (zeroin) on g over [a, b] with g(a), g(b) of opposite signs.
+/// Brent's method (zeroin) on g over [a, b] with g(a), g(b) of opposite signs; stops early
+/// when `stalled` becomes true (g reached its rounding floor).
 template <class G>
-double brent_root(G&& g, double a, double b, double ga, double gb, double tol) {
+double brent_root(G&& g, double a, double b, double ga, double gb, double tol, const bool& stalled) {
   double c = a, gc = ga, d = b - a, e = d;
   for (int iter = 0; iter < 200; ++iter) {
     if ((gb > 0) == (gc > 0)) {
@@ -472,6 +480,7 @@ double brent_root(G&& g, double a, double b, double ga, double gb, double tol) {
     ga = gb;
     b += std::abs(d) > tol1 ? d : (xm > 0 ? tol1 : -tol1);
     gb = g(b);
+    if (stalled) return b;
   }
   return b;
 }
@@ -517,9 +526,18 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
         const double mag = std::exp(std::clamp(cd.log_abs_det - ref, -600.0, 600.0));
         return cd.count == n_lo ? mag : -mag;
       };
-      auto g = [&](double lam) { return signed_det(E(lam)); };
+      // Near the root the determinant reaches its rounding floor: the same value again at a
+      // different lambda means further steps only sample noise.
+      bool stalled = false;
+      std::vector<double> seen = {iv.a.log_abs_det, iv.b.log_abs_det};
+      auto g = [&](double lam) {
+        const CountDet cd = E(lam);
+        if (std::find(seen.begin(), seen.end(), cd.log_abs_det) != seen.end()) stalled = true;
+        seen.push_back(cd.log_abs_det);
+        return signed_det(cd);
+      };
       const double tol = std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol);
-      const double root = brent_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol);
+      const double root = brent_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol, stalled);
       found.emplace_back(std::clamp(root, iv.lo, iv.hi), 1);
       continue;
     }
@@ -535,6 +553,53 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
   for (auto& [v, mult] : found)
     for (int j = 0; j < mult; ++j) out.push_back(v);
   if (stats) stats->count_evaluations += evals;
+  return out;
+}
+
+// ---- Long segments by doubling
+
+LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels) {
+  if (levels < 0) throw std::invalid_argument("long_segment_dynamic_stiffness: levels must be >= 0");
+  LongSegment out;
+  out.K = segment_dynamic_stiffness(A, std::ldexp(h, -levels), &out.asymmetry, &out.log_abs_det_tdf);
+  const Eigen::Index m = out.K.rows() / 2;
+  for (int level = 0; level < levels; ++level) {
+    const Eigen::MatrixXd K11 = out.K.topLeftCorner(m, m), K12 = out.K.topRightCorner(m, m);
+    const Eigen::MatrixXd K21 = out.K.bottomLeftCorner(m, m), K22 = out.K.bottomRightCorner(m, m);
+    const Eigen::MatrixXd S = K22 + K11;
+    const SymFactor f(S);
+    out.clamped_below = 2 * out.clamped_below + f.negative;
+    out.log_abs_det_tdf = 2 * out.log_abs_det_tdf + f.log_abs;
+    if (f.max_abs > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, f.min_abs / f.max_abs);
+    const Eigen::MatrixXd SiK21 = f.solve(K21), SiK12 = f.solve(K12);
+    Eigen::MatrixXd K(2 * m, 2 * m);
+    K.topLeftCorner(m, m) = K11 - K12 * SiK21;
+    K.topRightCorner(m, m) = -K12 * SiK12;
+    K.bottomLeftCorner(m, m) = -K21 * SiK21;
+    K.bottomRightCorner(m, m) = K22 - K21 * SiK12;
+    out.K = 0.5 * (K + K.transpose());
+  }
+  return out;
+}
+
+LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels) {
+  if (levels < 0) throw std::invalid_argument("long_segment_dynamic_stiffness: levels must be >= 0");
+  LongSegmentC out;
+  out.K = segment_dynamic_stiffness(A, std::ldexp(h, -levels), &out.asymmetry);
+  const Eigen::Index m = out.K.rows() / 2;
+  for (int level = 0; level < levels; ++level) {
+    const Eigen::MatrixXcd K11 = out.K.topLeftCorner(m, m), K12 = out.K.topRightCorner(m, m);
+    const Eigen::MatrixXcd K21 = out.K.bottomLeftCorner(m, m), K22 = out.K.bottomRightCorner(m, m);
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Eigen::MatrixXcd(K22 + K11));
+    out.min_pivot_rel = std::min(out.min_pivot_rel, lu.rcond());
+    const Eigen::MatrixXcd SiK21 = lu.solve(K21), SiK12 = lu.solve(K12);
+    Eigen::MatrixXcd K(2 * m, 2 * m);
+    K.topLeftCorner(m, m) = K11 - K12 * SiK21;
+    K.topRightCorner(m, m) = -K12 * SiK12;
+    K.bottomLeftCorner(m, m) = -K21 * SiK21;
+    K.bottomRightCorner(m, m) = K22 - K21 * SiK12;
+    out.K = 0.5 * (K + K.transpose());
+  }
   return out;
 }
 

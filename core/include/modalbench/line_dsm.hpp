@@ -32,7 +32,27 @@ namespace modalbench {
 /// Dynamic stiffness of one segment from the Hamiltonian state matrix A and length h.
 /// Returned symmetrised; `asymmetry`, if given, receives |K - K^T| / |K| before that
 /// (rounding-small exactly when A is Hamiltonian: a check on the operator's derivation).
-Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry = nullptr);
+/// `log_abs_det_tdf`, if given, receives log |det Tdf|: K_seg's poles are the zeros of det Tdf
+/// (the clamped segment's natural frequencies), so det K_global * prod det Tdf over the
+/// segments has no poles, only the natural frequencies as zeros (a smooth function to polish on).
+Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry = nullptr,
+                                          double* log_abs_det_tdf = nullptr);
+
+/// A long segment's dynamic stiffness by repeated doubling: a base piece of length
+/// h / 2^levels from exp(A h / 2^levels), then `levels` times two equal pieces joined by
+/// condensing their middle node (S = K22 + K11; K_2h = [[K11 - K12 S^-1 K21, -K12 S^-1 K12],
+/// [-K21 S^-1 K21, K22 - K21 S^-1 K12]]). Exact and stable where exp(A h) is not. The middle
+/// nodes' negative pivots give the Wittrick-Williams J0 of the long segment (its clamped-clamped
+/// natural frequencies below lambda; the base piece must have none: |p| h_base small), and
+/// log |det Tdf| follows from |det Tdf(2h)| = |det Tdf(h)|^2 |det S|.
+struct LongSegment {
+  Eigen::MatrixXd K;
+  int clamped_below = 0;       ///< J0 of the segment
+  double log_abs_det_tdf = 0;  ///< log |det Tdf| of the whole segment
+  double asymmetry = 0;        ///< of the base piece (see segment_dynamic_stiffness)
+  double min_pivot_rel = 1;    ///< smallest |eigenvalue| / norm of the condensed middle blocks
+};
+LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels);
 
 /// A symmetric block-tridiagonal matrix: `nodes` diagonal blocks of size m x m.
 /// DOFs may be marked held (removed); the factorization works on the rest.
@@ -106,7 +126,9 @@ struct SliceStats {
 std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
                                    double lambda_hint, double rel_tol = 1e-13, SliceStats* stats = nullptr);
 
-/// What a polished slicer needs at one lambda: the count and log |det K(lambda)|.
+/// What a polished slicer needs at one lambda: the count and the log of |det K(lambda)| times
+/// any positive factor that is smooth in lambda (best: prod |det Tdf| over the segments, which
+/// removes det K's poles).
 struct CountDet {
   int count = 0;
   double log_abs_det = 0;
@@ -136,7 +158,16 @@ LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint
 // ---- Complex path: damped harmonic response (structural damping, lambda = omega^2 / (1 + i eta)).
 
 /// Segment dynamic stiffness of a complex (damped) Hamiltonian state matrix: complex symmetric.
-Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry = nullptr);
+Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry = nullptr,
+                                           double* log_abs_det_tdf = nullptr);
+
+/// Complex (damped) version of long_segment_dynamic_stiffness (no count).
+struct LongSegmentC {
+  Eigen::MatrixXcd K;
+  double asymmetry = 0;
+  double min_pivot_rel = 1;  ///< smallest reciprocal condition estimate of the middle blocks
+};
+LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels);
 
 /// A complex symmetric block-tridiagonal matrix (no conjugation), for damped harmonic solves.
 /// Factorized by block LU with partial pivoting inside each pivot block; a nearly singular

@@ -1,0 +1,101 @@
+#pragma once
+// Solving a prism model along x by segment dynamic stiffness (line_dsm.hpp): each symmetry
+// class of the fields is a Hamiltonian line problem. Global nodes sit only where they are
+// needed (ends, loads, probes, observation points, on a common spacing when these are
+// commensurate); each segment's dynamic stiffness is built by doubling from a base piece short
+// enough that exp(A h) is well conditioned and has no clamped natural frequency below the
+// largest omega of interest (|p| h <= 1 for every wavenumber p of A at omega = 0 and at
+// omega_max). The segments are assembled into a block-tridiagonal K(omega^2); the
+// Wittrick-Williams count is the LDL^T inertia of K plus the segments' J0 (from the doubling).
+//   - natural frequencies: count-driven bisection until an interval holds one eigenvalue of a
+//     class, then Brent's method on the signed determinant (one mesh for the whole range, so
+//     det K is continuous); repeated values keep their multiplicity;
+//   - statics: K(0) d = f;
+//   - FRF: K(omega^2) d = f, or with structural damping (stiffness x (1 + i eta)) the complex
+//     solve K(omega^2 / (1 + i eta)) d = f / (1 + i eta).
+//
+// Usage:
+//   LineAnalysis la(model);
+//   ModeList modes = la.modes(6);
+//   std::vector<Deflection> d = la.statics(scene.loads, probes);
+
+#include <array>
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "modalbench/dtfm/prism_model.hpp"
+#include "modalbench/line_dsm.hpp"
+
+namespace modalbench::dtfm {
+
+struct SolveControls {
+  double rel_tol = 1e-11;  ///< relative tolerance on omega^2 (the polish also stops at the determinant's rounding floor)
+  double im_h = 1.0;       ///< base pieces: bound on |Im p| h (oscillatory wavenumbers: no clamped mode)
+  double re_h = 4.0;       ///< base pieces: bound on |Re p| h (evanescent: conditioning of exp(A h))
+  double family_threshold = 0.5;  ///< beam mode is labelled by its class if the rigid-section share of its kinetic energy reaches this
+};
+
+struct ModeList {
+  std::vector<double> omega_rad_s;  ///< ascending, rigid ones 0
+  std::vector<ModeFamily> family;
+  std::vector<int> cls;             ///< symmetry class of each mode
+  std::vector<double> family_share; ///< kinetic-energy share of the class's rigid-section motion (beams)
+  int rigid = 0;
+  long evaluations = 0;             ///< count / determinant evaluations
+  bool count_consistent = true;     ///< a fresh-mesh count agrees with the modes returned
+  std::string count_message;
+};
+
+class LineAnalysis {
+ public:
+  explicit LineAnalysis(const PrismModel& model, SolveControls controls = {});
+  ~LineAnalysis();
+  LineAnalysis(const LineAnalysis&) = delete;
+  LineAnalysis& operator=(const LineAnalysis&) = delete;
+
+  /// The k lowest natural frequencies over the classes whose family is in `families` (all
+  /// classes when empty). Throws std::runtime_error on an unstable (omega^2 < 0) system.
+  ModeList modes(int k, const std::vector<ModeFamily>& families = {});
+  /// Number of natural frequencies with omega^2 < lambda over the chosen classes (mesh for lambda).
+  int count_below(double lambda, const std::vector<ModeFamily>& families = {});
+  /// Static response at probes (x, y) under point loads. Throws std::runtime_error naming a
+  /// mechanism if a loaded class is not restrained.
+  std::vector<Deflection> statics(const std::vector<PointLoad>& loads, const std::vector<std::array<double, 2>>& probes);
+  /// Receptance w(observe) / Fz(excite) at each omega; `eta` structural loss factor. A sample
+  /// at an undamped natural frequency is not finite: it is returned as NaN and counted.
+  std::vector<std::complex<double>> receptance(std::array<double, 2> excite, std::array<double, 2> observe,
+                                               const std::vector<double>& omegas, double eta, int* skipped = nullptr);
+  /// Largest |K - K^T| / |K| of the segment matrices computed so far (rounding-small when
+  /// the state matrices are Hamiltonian: a check on the operator).
+  double max_asymmetry() const { return max_asymmetry_; }
+  long evaluations() const { return evaluations_; }
+  int classes() const { return static_cast<int>(lines_.size()); }
+
+  struct ClassLine;  // one symmetry class as a scaled line problem (analysis.cpp)
+
+ private:
+  const PrismModel& model_;
+  SolveControls ctl_;
+  std::vector<std::unique_ptr<ClassLine>> lines_;
+  double max_asymmetry_ = 0;
+  long evaluations_ = 0;
+
+  /// Global nodes and the longest base piece for lambda in [0, lambda_max].
+  struct Mesh {
+    std::vector<double> x;
+    double h_base = 0;
+  };
+  struct Assembled;
+
+  std::vector<int> pick(const std::vector<ModeFamily>& families) const;
+  Mesh mesh_for(ClassLine& c, double lambda_max, const std::vector<double>& required, int min_nodes = 0);
+  static Mesh refined(const Mesh& mesh);
+  Assembled assemble(const ClassLine& c, double lambda, const Mesh& mesh);
+  ComplexBlockTridiagonal assemble(const ClassLine& c, std::complex<double> lambda, const Mesh& mesh);
+  CountDet count_det(const ClassLine& c, double lambda, const Mesh& mesh);
+  double family_share(ClassLine& c, double lambda);
+};
+
+}  // namespace modalbench::dtfm
