@@ -218,6 +218,9 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
         if (k > 0 && spent + last_time * growth > opt.budget_s) {
           c.notes.push_back(fmt::format("{}: ladder stopped before mesh {} (time budget {:.0f} s per back-end)",
                                         s->name(), ladder[k].spec(), opt.budget_s));
+          if (opt.progress)
+            *opt.progress << fmt::format("[{}] {}: ladder stopped before mesh {} (time budget {:.0f} s)\n", scene.name,
+                                         s->name(), ladder[k].spec(), opt.budget_s);
           break;
         }
         if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...", scene.name, s->name(), ladder[k].spec()) << std::flush;
