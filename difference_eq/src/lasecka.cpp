@@ -105,6 +105,10 @@ Eigenfunction eigenfunction(long R, double a2) {
   Eigenfunction ef;
   ef.W.resize(R + 3);
   ef.Phi.resize(R + 3);
+  ef.D2.resize(R + 1);
+  ef.D3.resize(R);
+  const double x1 = rt.ch - 1.0, x2 = rt.cn - 1.0;  // Delta^2 multiplies the cosh/sinh part by 2 x1, the cos/sin part by 2 x2
+  const double sh2 = std::sinh(0.5 * rt.mu), sn2 = std::sin(0.5 * rt.nu);
   for (long r = -1; r <= R + 1; ++r) {
     const double y = static_cast<double>(r);
     double e, c, eR, cR;
@@ -112,14 +116,24 @@ Eigenfunction eigenfunction(long R, double a2) {
     ratio(rt.mu, Rd - y, Rd, eR, cR);
     // W = D C_R (p sinh mu r - q sin nu r) + cosh mu r - cos nu r, regrouped:
     // hyperbolic part D [-p sinh mu(R - r) - p cos(nu R) sinh mu r + q sin(nu R) cosh mu r].
-    const double W = (-p * eR - p * cnR * e + q * snR * c) / Dinv - CR * q * std::sin(rt.nu * y) / Dinv -
-                     std::cos(rt.nu * y);
+    const double H = (-p * eR - p * cnR * e + q * snR * c) / Dinv;
+    const double T = -CR * q * std::sin(rt.nu * y) / Dinv - std::cos(rt.nu * y);
     // Phi = 3 D q p C_R (cosh mu r - cos nu r) + 3 q sinh mu r + 3 p sin nu r, regrouped:
     // hyperbolic part 3 q D [p cosh mu(R - r) - p cos(nu R) cosh mu r + q sin(nu R) sinh mu r].
     const double Phi = 3.0 * q * (p * cR - p * cnR * c + q * snR * e) / Dinv -
                        3.0 * q * p * CR * std::cos(rt.nu * y) / Dinv + 3.0 * p * std::sin(rt.nu * y);
-    ef.W[r + 1] = W;
+    ef.W[r + 1] = H + T;
     ef.Phi[r + 1] = Phi;
+    if (r >= 0 && r <= R) ef.D2[r] = 2.0 * x1 * H + 2.0 * x2 * T;
+    if (r >= 0 && r < R) {
+      // (E - 1) on each term: sinh mu(r+1) - sinh mu r = 2 sinh(mu/2) cosh mu(r + 1/2), etc.
+      double eh, ch, eRh, cRh;
+      ratio(rt.mu, y + 0.5, Rd, eh, ch);
+      ratio(rt.mu, Rd - y - 0.5, Rd, eRh, cRh);
+      const double dH = 2.0 * sh2 * (p * cRh - p * cnR * ch + q * snR * eh) / Dinv;
+      const double dT = -CR * q * 2.0 * sn2 * std::cos(rt.nu * (y + 0.5)) / Dinv + 2.0 * sn2 * std::sin(rt.nu * (y + 0.5));
+      ef.D3[r] = 2.0 * x1 * dH + 2.0 * x2 * dT;
+    }
   }
   return ef;
 }
@@ -147,7 +161,8 @@ Output solve(const Input& in) {
     nrm = std::sqrt(nrm);
     auto W = [&](long r) { return ef.W[r + 1] / nrm; };
     auto Phi = [&](long r) { return ef.Phi[r + 1] / nrm; };
-    auto d2 = [&](long r) { return W(r + 1) + W(r - 1) - 2.0 * W(r); };
+    auto d2 = [&](long r) { return ef.D2[r] / nrm; };            // Delta^2 W_r
+    auto d3 = [&](long r) { return ef.D3[r] / nrm; };            // (E - 1) Delta^2 W_r
     double Pk = 0;
     for (long r = 0; r <= R; ++r) Pk += P[r] * W(r);
     const double c = Pk / a2;  // P_k / alpha_k^2
@@ -155,11 +170,11 @@ Output solve(const Input& in) {
       wsum[r] += c * W(r);
       phisum[r] += c * Phi(r);
     }
-    sV0 += c * (d2(1) - d2(0));         // (E - 1) Delta^2 W_0
-    sVR += c * (d2(R - 1) - d2(R));     // (E^-1 - 1) Delta^2 W_R
-    sf0 += c * d2(0);                   // Delta^2 W_0
-    X1 += c * (d2(0) - d2(1));          // (1 - E) Delta^2 W_0
-    X2 += c * (d2(R) - d2(R - 1));      // (1 - E^-1) Delta^2 W_R
+    sV0 += c * d3(0);        // (E - 1) Delta^2 W_0
+    sVR += -c * d3(R - 1);   // (E^-1 - 1) Delta^2 W_R
+    sf0 += c * d2(0);        // Delta^2 W_0
+    X1 += -c * d3(0);        // (1 - E) Delta^2 W_0
+    X2 += c * d3(R - 1);     // (1 - E^-1) Delta^2 W_R
     X3 += c * d2(0);
   }
   // (19)

@@ -72,13 +72,9 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
   }
   c.modes = c.statics = true;
   c.frf = false;
-  std::vector<std::string> why;
-  if (s.request.frf) why.push_back("no FRF (not implemented by this back-end)");
-  if (s.theory == Theory::Timoshenko)
-    why.push_back("Timoshenko scene solved with the Euler-Bernoulli model (shear deformation and rotary inertia neglected)");
-  if (s.physics != Physics::Bending)
-    why.push_back("physics '" + to_string(s.physics) + "': only bending in x-z is solved (axial, torsion, x-y bending not modelled)");
-  for (std::size_t i = 0; i < why.size(); ++i) c.reason += (i ? "; " : "") + why[i];
+  // The model restrictions (Euler-Bernoulli, bending in x-z) are stated by do_solve in the
+  // result's warnings; here only what is not computed at all.
+  c.reason = "FRF is not implemented by difference_eq (modes and statics only)";
   return c;
 }
 
@@ -139,7 +135,12 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
       "modes: {} mass, 4x4 characteristic determinant in the difference-equation roots (scaled cosh/sinh) "
       "+ Wittrick-Williams count, Brent; statics: clamped-clamped {} + 4x4 spring superposition (closed form)",
       R, to_string(mass), to_string(config_.static_method));
-  // A Timoshenko scene or planar/spatial physics is reported by Solver::solve from supports().
+  if (s.theory == Theory::Timoshenko)
+    sum.warnings.push_back("Euler-Bernoulli model used for a Timoshenko scene: shear deformation and rotary "
+                           "inertia are neglected");
+  if (s.physics != Physics::Bending)
+    sum.warnings.push_back("physics '" + to_string(s.physics) +
+                           "': only bending in x-z is solved (axial, torsion and x-y bending are not modelled)");
   if (other_components)
     sum.warnings.push_back("load components other than Fz and My are ignored (bending in x-z only)");
 

@@ -90,47 +90,63 @@ const MinorTables& minors() {
 constexpr double kRigidSpring = 1e60;
 
 struct SupportSolution {
-  double G[4][4] = {};  // flexibility on the free DOFs (dimensionless)
-  int free_mask = 0;
+  double G[4][4] = {};  // flexibility on the free DOFs, d = G f (dimensionless)
+  double Q[4][4] = {};  // the same for q = (w0/L, rho, psi0, psiL) = S d, rho = (wL - w0)/L the
+                        // chord rotation, with its own exact polynomial row
   double flexibility = 0, condition = 0;
 };
+
+// q = S d: (w0/L, (wL - w0)/L, psi0, psiL).
+constexpr int kS[4][4] = {{1, 0, 0, 0}, {-1, 0, 1, 0}, {0, 1, 0, 0}, {0, 0, 0, 1}};
 
 // (K_L + S)^-1 on the free DOFs as ratios of multilinear polynomials in the springs:
 //   det(K_F + S_F) = sum_{T subset F} prod_{t in T} k_t det(K_{F\T}),
 //   cof_ji(K_F + S_F) = sum_{T subset F\{i,j}} prod_{t in T} k_t cof_ji(K_{F\T})
-// (the Taylor expansion of a multilinear function; integer minors, so only the products of
-// springs and the final sums round). Zero springs drop out, held DOFs are not in F.
+// (the Taylor expansion of a multilinear function). The monomial coefficients are integer
+// minors of K_L, so they and their integer combinations (the rows of S G) are exact: near a
+// translation mechanism the huge common part of w0 and wL cancels exactly in the coefficients
+// of the chord-rotation row instead of in floating point. Zero springs drop out; held DOFs are not in F.
 SupportSolution solve_supports(const double k[4]) {
   const MinorTables& mt = minors();
   SupportSolution s;
   int F = 0;
   for (int i = 0; i < 4; ++i)
     if (!std::isinf(k[i])) F |= 1 << i;
-  s.free_mask = F;
-  auto prod = [&](int T) {
-    double p = 1.0;
+  double prod[16];
+  for (int T = 0; T < 16; ++T) {
+    prod[T] = 1.0;
     for (int t = 0; t < 4; ++t)
-      if (T & (1 << t)) p *= k[t];
-    return p;
-  };
+      if (T & (1 << t)) prod[T] *= k[t];
+  }
   double den = 0;
   for (int T = F;; T = (T - 1) & F) {
-    const double p = prod(T);
-    if (p != 0.0) den += p * mt.det[F & ~T];
+    if (prod[T] != 0.0) den += prod[T] * mt.det[F & ~T];
     if (T == 0) break;
   }
   if (!(den > 0)) throw Mechanism("the supports do not restrain rigid-body motion (singular support system)");
+  // Numerator coefficients N[i][j][T].
+  double N[4][4][16] = {};
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
       if (!(F & (1 << i)) || !(F & (1 << j))) continue;
       const int rest = F & ~((1 << i) | (1 << j));
-      double num = 0;
       for (int T = rest;; T = (T - 1) & rest) {
-        const double p = prod(T);
-        if (p != 0.0) num += p * mt.cof[F & ~T][j][i];
+        N[i][j][T] = mt.cof[F & ~T][j][i];
         if (T == 0) break;
       }
-      s.G[i][j] = num / den;
+    }
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      double g = 0, q = 0;
+      for (int T = 0; T < 16; ++T) {
+        if ((T & ~F) != 0 || prod[T] == 0.0) continue;
+        double c = 0;
+        for (int m = 0; m < 4; ++m) c += kS[i][m] * N[m][j][T];
+        g += N[i][j][T] * prod[T];
+        q += c * prod[T];
+      }
+      s.G[i][j] = g / den;
+      s.Q[i][j] = q / den;
     }
   // Extreme eigenvalues: the largest of the flexibility G (accurate) and of K_F + S_F.
   int idx[4], n = 0;
@@ -250,6 +266,12 @@ void clamped_clamped_eigen(const RegularBeam& b, const std::vector<NodalLoad>& l
   }
   w.assign(R + 1, 0.0);
   std::vector<double> phi(R + 1, 0.0);
+  // End-element rows of each eigenfunction, from the identities (paper, (10) applied to W_k with
+  // its load alpha_k^2 W_k / B) -12 W_1 + 6 Phi_1 = (E - 1) Delta^2 W_0 - 4 alpha^2 W_1,
+  // -6 W_1 + 2 Phi_1 = -Delta^2 W_0, -12 W_{R-1} - 6 Phi_{R-1} - 6 Phi_R = -(E - 1) Delta^2 W_{R-1}
+  // - 4 alpha^2 W_{R-1}, with the differences taken analytically: nodal differences would cost
+  // ~R^3 eps in the reactions, which the support springs amplify near a mechanism.
+  double rows[3] = {0, 0, 0};
   const std::vector<double> alpha2 = lasecka::eigenvalues(R);
   for (double a2 : alpha2) {
     const lasecka::Eigenfunction ef = lasecka::eigenfunction(R, a2);
@@ -266,18 +288,23 @@ void clamped_clamped_eigen(const RegularBeam& b, const std::vector<NodalLoad>& l
       w[r] += c * ef.W[r + 1];
       phi[r] += c * ef.Phi[r + 1];
     }
+    rows[0] += c * (ef.D3[0] - 4.0 * a2 * ef.W[2]);
+    rows[1] += c * (-ef.D2[0]);
+    rows[2] += c * (-ef.D3[R - 1] - 4.0 * a2 * ef.W[R]);
   }
+  std::vector<double> philoc(R + 1, 0.0);  // rotations with every w held (local moment response)
   for (long s = 1; s <= R; ++s) {
     if (C[s] == 0.0) continue;
     const RotationGreen G(R, s);
-    for (long r = 1; r <= R; ++r) phi[r] += a * a / EI * G(r) * C[s];
+    for (long r = 1; r <= R; ++r) philoc[r] += a * a / EI * G(r) * C[s];
   }
-  // Support actions of the clamped-pinned beam, from the rows of the end elements.
+  for (long r = 0; r <= R; ++r) phi[r] += philoc[r];
+  // Support actions of the clamped-pinned beam (element units EI/a^3 on w, phi = a psi).
   const double ke = EI / (a * a * a);
   double react[4];
-  react[0] = ke * (-12.0 * w[1] + 6.0 * phi[1]) - P[0];
-  react[1] = a * (ke * (-6.0 * w[1] + 2.0 * phi[1])) - C[0];
-  react[2] = ke * (-12.0 * w[R - 1] - 6.0 * phi[R - 1] + 12.0 * w[R] - 6.0 * phi[R]) - P[R];
+  react[0] = ke * (rows[0] + 6.0 * philoc[1]) - P[0];
+  react[1] = a * ke * (rows[1] + 2.0 * philoc[1]) - C[0];
+  react[2] = ke * (rows[2] - 6.0 * (R >= 2 ? philoc[R - 1] : 0.0) - 6.0 * philoc[R]) - P[R];
   react[3] = 0.0;
   // Clamp the end rotation: the cubic field with psi(L) = -psi_R (w0 = psi0 = wL = 0) and its end forces.
   const double pbar = -phi[R] / a;
@@ -299,10 +326,18 @@ void clamped_clamped_eigen(const RegularBeam& b, const std::vector<NodalLoad>& l
 }  // namespace
 
 StaticSolution solve_static(const RegularBeam& b, const std::vector<NodalLoad>& loads, StaticMethod method) {
+  StaticSolution out;
+  solve_static(b, loads, method, out);
+  return out;
+}
+
+void solve_static(const RegularBeam& b, const std::vector<NodalLoad>& loads, StaticMethod method,
+                  StaticSolution& out) {
   b.validate(false);
   check_loads(b, loads);
   if (rigid_body_modes(b) > 0) throw Mechanism(mechanism_message(b));
-  StaticSolution out;
+  out.warnings.clear();
+  out.reactions = {};
   double k[4];
   for (int i = 0; i < 4; ++i) {
     k[i] = b.dimensionless_spring(i);
@@ -320,16 +355,20 @@ StaticSolution solve_static(const RegularBeam& b, const std::vector<NodalLoad>& 
   out.support_condition = sup.condition;
   const double L = b.L, EI = b.EI;
   const double fhat[4] = {feq[0] * L * L / EI, feq[1] * L / EI, feq[2] * L * L / EI, feq[3] * L / EI};
-  double d[4] = {0, 0, 0, 0};  // (w0/L, psi0, wL/L, psiL)
+  double d[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0};  // (w0/L, psi0, wL/L, psiL); (w0/L, rho, psi0, psiL)
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) d[i] += sup.G[i][j] * fhat[j];
-  const double dw0 = d[0] * L, dp0 = d[1], dwL = d[2] * L, dpL = d[3];
+    for (int j = 0; j < 4; ++j) {
+      d[i] += sup.G[i][j] * fhat[j];
+      q[i] += sup.Q[i][j] * fhat[j];
+    }
+  // Settlement field w0 H1 + L psi0 H2 + wL H3 + L psiL H4 written with H1 = 1 - H3, so that a
+  // near-rigid translation (w0 ~ wL large) never enters as the difference wL - w0.
   const long R = b.R;
   const double Rd = static_cast<double>(R);
   for (long r = 0; r <= R; ++r) {
     const Hermite H(static_cast<double>(r) / Rd, static_cast<double>(R - r) / Rd);
-    out.w[r] += dw0 * H.h[0] + L * dp0 * H.h[1] + dwL * H.h[2] + L * dpL * H.h[3];
-    out.slope[r] += (dw0 * H.dh[0] + L * dp0 * H.dh[1] + dwL * H.dh[2] + L * dpL * H.dh[3]) / L;
+    out.w[r] += L * (q[0] + q[1] * H.h[2] + q[2] * H.h[1] + q[3] * H.h[3]);
+    out.slope[r] += q[1] * H.dh[2] + q[2] * H.dh[1] + q[3] * H.dh[3];
   }
   // End DOFs held exactly where the support is rigid.
   if (std::isinf(k[0])) out.w[0] = 0.0;
@@ -352,7 +391,6 @@ StaticSolution solve_static(const RegularBeam& b, const std::vector<NodalLoad>& 
         "near-mechanism: the supports restrain rigid-body motion only weakly (support flexibility " +
         std::to_string(sup.flexibility) + " x L^3/EI, condition number " + std::to_string(sup.condition) +
         "); deflections are dominated by rigid-body motion and are as sensitive to the spring values");
-  return out;
 }
 
 double static_residual(const RegularBeam& b, const std::vector<NodalLoad>& loads, const StaticSolution& s) {

@@ -163,8 +163,16 @@ Chain::Chain(long R_, const MassCoeffs& m, double Om) : R(R_), T(0.5 * static_ca
 
     // Columns, normalised by sigma^a kappa^b so that they are real-analytic in Omega.
     const bool even = (R % 2 == 0);
-    const cd ns = even ? cd(1.0) : rd.kappa;
-    const cd na = even ? rd.sigma * rd.kappa : rd.sigma;
+    cd ns = even ? cd(1.0) : rd.kappa;
+    cd na = even ? rd.sigma * rd.kappa : rd.sigma;
+    if (j == 1) {
+      // The root x2 = C/q passes x = 0 where h22 = 12 - m22_0 Omega vanishes too (consistent mass:
+      // Omega = 6) and x = -2 where h22 = 4 - (m22_0 - 2 m22_1) Omega vanishes (Omega = 2/7):
+      // there v = (h22, g sinh mu) -> 0 and one column has a simple zero. Dividing by these
+      // factors keeps every column non-zero, so det C changes sign only at eigenvalues.
+      ns *= (12.0 - Om * m.m22_0) / 12.0;
+      (even ? ns : na) *= (4.0 - Om * (m.m22_0 - 2.0 * m.m22_1)) / 4.0;
+    }
     if (ns == 0.0 || na == 0.0) degenerate = true;
     norm[0][j] = ns;
     norm[1][j] = na;
@@ -233,6 +241,17 @@ Eigen::Matrix4d Chain::characteristic_matrix(const std::array<double, 4>& k) con
   return Cm;
 }
 
+double Chain::pole_closeness() const {
+  double m = kInf;
+  for (int p = 0; p < 2; ++p) {
+    const cd det = E[p][0][0] * E[p][1][1] - E[p][1][0] * E[p][0][1];
+    const double n0 = std::hypot(std::abs(E[p][0][0]), std::abs(E[p][0][1]));
+    const double n1 = std::hypot(std::abs(E[p][1][0]), std::abs(E[p][1][1]));
+    if (n0 > 0 && n1 > 0) m = std::min(m, std::abs(det) / (n0 * n1));
+  }
+  return m;
+}
+
 double Chain::max_imaginary() const {
   double im = 0, re = 0;
   for (int p = 0; p < 2; ++p)
@@ -247,10 +266,13 @@ double Chain::max_imaginary() const {
 int negative_eigenvalues(const Eigen::MatrixXd& A) {
   const Eigen::Index n = A.rows();
   if (n == 0) return 0;
+  // Congruence with s_i = 1/sqrt(max_j |A_ij|) keeps the inertia and bounds every entry by 1
+  // (|A_ij| <= min(r_i, r_j)); scaling by the diagonal alone fails when a diagonal entry
+  // passes through zero.
   Eigen::VectorXd s(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double d = std::abs(A(i, i));
-    s[i] = d > 0 ? 1.0 / std::sqrt(d) : 1.0;
+    const double r = A.row(i).cwiseAbs().maxCoeff();
+    s[i] = r > 0 ? 1.0 / std::sqrt(r) : 1.0;
   }
   const Eigen::MatrixXd As = s.asDiagonal() * A * s.asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(As, Eigen::EigenvaluesOnly);
@@ -356,7 +378,21 @@ Chain chain_at(const Problem& p, double Om) {
 }
 
 long count_omega(const Problem& p, double Om) {
-  const Chain c = chain_at(p, Om);
+  // At a pinned-pinned eigenvalue N_pp jumps exactly while an eigenvalue of D_phiphi crosses zero
+  // with a rounding-sized sign: the two jumps cancel in exact arithmetic but not within ~1e-15
+  // of the crossing. The count is piecewise constant, so evaluate it just above such a point
+  // (1e-10 relative); Brent on the pole-free det C then places the root exactly.
+  for (double shift = 1e-10; shift < 1e-3; shift *= 10.0) {
+    const long lo = detail::pinned_pinned_count(p.R, *p.mc, Om * (1.0 - 1e-12));
+    const long hi = detail::pinned_pinned_count(p.R, *p.mc, Om * (1.0 + 1e-12));
+    if (lo == hi) break;
+    Om *= 1.0 + shift;
+  }
+  Chain c = chain_at(p, Om);
+  // Likewise at a clamped-clamped eigenvalue (a pole of D): there D is a huge rank-one term
+  // whose rounding hides the signs of the rest. Step off until the pole no longer dominates.
+  for (double shift = 1e-12; c.pole_closeness() < 1e-11 && shift < 1e-3; shift *= 10.0)
+    c = chain_at(p, Om * (1.0 + shift));
   const Eigen::Matrix4d D = c.end_stiffness();
   Eigen::Matrix2d Dpp;
   Dpp << D(1, 1), D(1, 3), D(3, 1), D(3, 3);
@@ -366,7 +402,7 @@ long count_omega(const Problem& p, double Om) {
   Eigen::MatrixXd Df(fr.size(), fr.size());
   for (std::size_t i = 0; i < fr.size(); ++i)
     for (std::size_t j = 0; j < fr.size(); ++j) Df(i, j) = D(fr[i], fr[j]) + (i == j ? p.k[fr[i]] : 0.0);
-  return detail::pinned_pinned_count(p.R, *p.mc, Om) - detail::negative_eigenvalues(Dpp) +
+  return detail::pinned_pinned_count(p.R, *p.mc, c.Omega) - detail::negative_eigenvalues(Dpp) +
          detail::negative_eigenvalues(Df);
 }
 
@@ -557,14 +593,15 @@ double eigen_residual(const RegularBeam& beam, MassModel mass, double omega, con
       Ku[d] += p.k[i] * v;
     }
   }
-  double res = 0, nk = 0, nm = 0;
-  for (std::size_t i = 0; i < Ku.size(); ++i) {
-    res = std::max(res, std::abs(Ku[i] - Om * Mu[i]));
-    nk = std::max(nk, std::abs(Ku[i]));
-    nm = std::max(nm, std::abs(Mu[i]));
-  }
-  const double den = nk + Om * nm;
-  return std::max(den > 0 ? res / den : res, held);
+  // Normwise backward error: ||r|| / ((||K|| + Omega ||M||) ||u||) (infinity norms, element units).
+  double res = 0, umax = 0;
+  for (std::size_t i = 0; i < Ku.size(); ++i) res = std::max(res, std::abs(Ku[i] - Om * Mu[i]));
+  for (long r = 0; r <= R; ++r) umax = std::max({umax, std::abs(u.w[r]), std::abs(a * u.slope[r])});
+  double knorm = 60.0, mnorm = mass == MassModel::Consistent ? 446.0 : 2.0;
+  for (int i = 0; i < 4; ++i)
+    if (!std::isinf(p.k[i])) knorm = std::max(knorm, 60.0 + p.k[i]);
+  const double den = (knorm + Om * mnorm) * umax;
+  return std::max(den > 0 ? res / den : res, umax > 0 ? held / umax : held);
 }
 
 }  // namespace modalbench::difference_eq

@@ -60,6 +60,10 @@ std::vector<double> eigenvalues(long R);
 /// the rearranged form that never builds e^{mu R}-sized terms.
 struct Eigenfunction {
   std::vector<double> W, Phi;  ///< r = -1..R+1 (index r + 1)
+  /// Delta^2 W_r (r = 0..R) and (E - 1) Delta^2 W_r (r = 0..R-1), applied to the closed form
+  /// term by term (Delta^2 cosh(mu r) = 2 (cosh mu - 1) cosh(mu r), ...) instead of differencing
+  /// nodal values, which would lose ~R^3 eps in the end reactions (19).
+  std::vector<double> D2, D3;
 };
 Eigenfunction eigenfunction(long R, double alpha2);
 /// The corrected characteristic function (divided by cosh(mu R) (cosh mu + 2)); and as printed.

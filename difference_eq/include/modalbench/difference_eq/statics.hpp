@@ -53,12 +53,15 @@ struct StaticSolution {
 };
 
 /// Above this support flexibility (in units of L^3/EI) the result carries a near-mechanism warning.
-inline constexpr double kNearMechanismFlexibility = 1e6;
+inline constexpr double kNearMechanismFlexibility = 1e4;
 
 /// Nodal deflections and slopes for nodal loads. Throws Mechanism if the springs leave a
 /// rigid-body motion free, std::invalid_argument for bad input.
 StaticSolution solve_static(const RegularBeam& beam, const std::vector<NodalLoad>& loads,
                             StaticMethod method = StaticMethod::PiecewiseCubic);
+/// The same, writing into `out` (its storage is reused: no page faults on repeated solves).
+void solve_static(const RegularBeam& beam, const std::vector<NodalLoad>& loads, StaticMethod method,
+                  StaticSolution& out);
 
 /// Relative residual ||K u - f||_inf / (||K||_inf ||u||_inf + ||f||_inf) of the assembled FE
 /// equations (held DOFs excluded), evaluated element by element in O(R).

@@ -69,8 +69,8 @@ struct ModeShape {
 /// The nodal mode shape at a natural frequency (null vector of C, then the closed-form fields).
 ModeShape mode_shape(const RegularBeam& beam, MassModel mass, double omega_rad_s);
 
-/// Relative eigen-residual ||(K - w^2 M) u||_inf / (||K u||_inf + w^2 ||M u||_inf) of the
-/// assembled FE equations (element by element, O(R)), held DOFs included as |u| there.
+/// Normwise backward error ||(K - w^2 M) u||_inf / ((||K||_inf + w^2 ||M||_inf) ||u||_inf) of the
+/// assembled FE equations (element by element, O(R)); a held DOF's |u| counts as residual.
 double eigen_residual(const RegularBeam& beam, MassModel mass, double omega_rad_s, const ModeShape& u);
 
 }  // namespace modalbench::difference_eq
