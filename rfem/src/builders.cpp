@@ -321,7 +321,7 @@ Model build_box(const BoxSpec& sp) {
   m.length_scale = d * std::max({sp.nx, sp.ny, sp.nz});
   m.loss_factor = mat.loss_factor;
   m.description = fmt::format("box: {}x{}x{} rigid cubes of edge {} m, face SDEs{}", sp.nx, sp.ny, sp.nz, d,
-                              sp.clamp_x0 ? ", face x = 0 clamped" : ", free");
+                              sp.clamp_x0 ? ", face x = 0 held through half-cube SDEs" : ", free");
   auto id = [&](int i, int j, int k) { return (k * sp.ny + j) * sp.nx + i; };
   for (int k = 0; k < sp.nz; ++k)
     for (int j = 0; j < sp.ny; ++j)
@@ -358,12 +358,12 @@ Model build_box(const BoxSpec& sp) {
         if (i + 1 < sp.nx) link(id(i + 1, j, k), Rx, ex);
         if (j + 1 < sp.ny) link(id(i, j + 1, k), Ry, ey);
         if (k + 1 < sp.nz) link(id(i, j, k + 1), Rz, ez);
-        if (sp.clamp_x0 && i == 0) {
+        if (sp.clamp_x0 && i == 0) {  // the half cube between the held face and the centre
           Sde g;
           g.a = me;
           g.b = kGround;
           g.point = c - 0.5 * d * ex;
-          g.stiffness = Vector6d::Constant(kInf);
+          g.stiffness = 2.0 * kk;
           m.sdes.push_back(g);
         }
       }

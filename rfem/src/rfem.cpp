@@ -154,8 +154,10 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
       r.summary.warnings.push_back(fmt::format("{} of {} requested modes computed", shown, k));
     method += "; modes: " + md.method;
     if (!md.converged) set_status(r, Status::NotConverged, "eigen solve not converged: see warnings");
-    else if (md.max_residual > 1e-6)
-      set_status(r, Status::NumericalIssue, fmt::format("eigen-residual {:.3g} above 1e-6", md.max_residual));
+    else if (md.max_backward_error > 1e-8)
+      set_status(r, Status::NumericalIssue,
+                 fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g})", md.max_backward_error,
+                             md.max_residual));
   }
 
   // Statics at the probes.

@@ -12,7 +12,10 @@
 //    A Sturm count (Sylvester inertia of K - mu M, mu just above the last mode) proves that
 //    no mode below it was missed; a shortfall triggers a larger Lanczos run.
 // Every mode is checked by its residual ||K z - w^2 M z|| / ||K z|| (the constraint forces
-// G' lambda projected out) and labelled by the DOF family that carries its kinetic energy
+// G' lambda projected out) and by its componentwise backward error
+// ||K z - w^2 M z|| / || (|K| + w^2 |M|) |z| ||: the residual of a low mode of a fine, stiff
+// model is bounded below by rounding times the condition (eps lambda_max / lambda), the
+// backward error is not, so it is the one that decides trust. Modes are labelled by the DOF family that carries its kinetic energy
 // (>= 95 %), `unknown` otherwise; inside a cluster of equal frequencies the basis is rotated
 // to separate the families first.
 // Statics: K z = f by sparse LDL' (saddle point with constraints). A free rigid-body motion
@@ -36,7 +39,7 @@ struct ModeOptions {
   long dense_limit = 600;        ///< Auto: dense when the free unknowns n - m are at most this
   double tolerance = 1e-10;      ///< Lanczos relative tolerance
   bool sturm_check = true;       ///< count the eigenvalues below the last mode (sparse path)
-  double residual_warning = 1e-6;
+  double backward_error_warning = 1e-10;  ///< warn (and the solver flags) above this
   unsigned seed = 20240917u;     ///< Lanczos start vector
 };
 
@@ -45,12 +48,14 @@ struct Modes {
   Eigen::MatrixXd Z;               ///< M-orthonormal shapes over z
   std::vector<ModeFamily> family;
   std::vector<double> residuals;   ///< relative eigen-residual per mode
+  std::vector<double> backward_errors;  ///< componentwise backward error per mode
   int rigid = 0;
   std::string method;              ///< what was actually used, with the convergence record
   long iterations = 0;             ///< Lanczos restarts (0 for dense)
   long operations = 0;             ///< operator applications (solves)
   long sturm_count = -1;           ///< eigenvalues below the check point; -1 if not checked
   double max_residual = 0;
+  double max_backward_error = 0;
   bool converged = true;
   std::vector<std::string> warnings;
   double factor_seconds = 0, eigen_seconds = 0;

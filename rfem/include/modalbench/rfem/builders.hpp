@@ -27,6 +27,8 @@
 //
 // Box: nx x ny x nz rigid cubes of edge `edge`, face neighbours joined by an SDE at the shared
 // face centre (k = [E d, kappa G d, kappa G d, G J/d, E d^3/12, E d^3/12], J of a square section).
+// A held face x = 0 joins each face cube to ground at its face centre through the half cube
+// (twice the link stiffness), so the face, not the cube centre, is where the body is held.
 
 #include <Eigen/Dense>
 
@@ -56,7 +58,7 @@ struct BoxSpec {
   int nx = 1, ny = 1, nz = 1;  ///< cubes along x, y, z
   double edge = 0.1;           ///< m
   Material material;           ///< E, G, rho, kappa used
-  bool clamp_x0 = false;       ///< hold every DOF of the face x = 0 (else free)
+  bool clamp_x0 = false;       ///< hold the face x = 0 (through the half cubes; else free)
 };
 Model build_box(const BoxSpec& spec);
 

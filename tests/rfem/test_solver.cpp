@@ -1,0 +1,138 @@
+// The RfemSolver behind the common interface: identity, meshes, refused input, every built-in
+// scene on its default mesh (status, finiteness, diagnostics, speed), the modal FRF option.
+#define BOOST_TEST_MODULE rfem_solver
+#include <boost/test/unit_test.hpp>
+
+#include <filesystem>
+
+#include "modalbench/rfem/rfem.hpp"
+#include "rfem_test_helpers.hpp"
+
+using namespace modalbench;
+using namespace modalbench::rfem;
+using namespace rfem_test;
+
+namespace {
+std::vector<Scene> builtin_scenes() {
+  std::vector<Scene> v;
+  for (const auto& e : std::filesystem::directory_iterator(MODALBENCH_SCENES_DIR))
+    if (e.path().extension() == ".toml") v.push_back(load_scene(e.path()));
+  return v;
+}
+bool has_phase(const Result& r, const std::string& name) {
+  for (const auto& [n, t] : r.summary.timings_s)
+    if (n == name) return t >= 0;
+  return false;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(identity_and_capabilities) {
+  const RfemSolver s;
+  BOOST_TEST(s.name() == "rfem");
+  BOOST_TEST(!s.description().empty());
+  for (const Scene& sc : builtin_scenes()) {
+    const Capability c = s.supports(sc);
+    BOOST_TEST((c.modes && c.statics && c.frf));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(meshes_are_valid_and_refine) {
+  const RfemSolver s;
+  for (const Scene& sc : builtin_scenes()) {
+    BOOST_TEST_MESSAGE(sc.name << ": default " << s.default_mesh(sc).spec());
+    BOOST_CHECK_NO_THROW(RfemSolver::build(sc, s.default_mesh(sc)));
+    long prev = 0;
+    for (const auto& m : s.mesh_ladder(sc)) {
+      const long dofs = RfemSolver::build(sc, m).body_dofs();
+      BOOST_TEST(dofs > prev);
+      prev = dofs;
+    }
+    BOOST_TEST(s.mesh_ladder(sc).size() >= 4u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
+  const RfemSolver s;
+  const Scene beam = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
+  const Scene plate = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
+  for (const auto& [sc, spec] : std::vector<std::pair<Scene, std::string>>{
+           {beam, "64x2"}, {beam, "-"}, {plate, "20"}, {plate, "1x5"}, {plate, "10x6x2"}}) {
+    const Result r = s.solve(sc, Discretization::parse(spec), Options{});
+    BOOST_TEST_MESSAGE(spec << ": " << r.summary.message);
+    BOOST_TEST((r.summary.status == Status::InvalidInput));
+    BOOST_TEST(r.summary.message.find("--mesh") != std::string::npos);
+    BOOST_TEST(r.summary.message.find(sc.source) != std::string::npos);
+  }
+  // A mesh so coarse that the supports hold everything is refused, not solved with zero DOFs.
+  Scene cc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/lasecka_elastic_beam.toml");
+  cc.theory = Theory::EulerBernoulli;
+  cc.x0 = Support::named("clamped");
+  cc.xL = Support::named("clamped");
+  const Result r = s.solve(cc, Discretization{{1}}, Options{});
+  BOOST_TEST((r.summary.status == Status::InvalidInput));
+}
+
+BOOST_AUTO_TEST_CASE(builtin_scenes_solve_on_the_default_mesh) {
+  const RfemSolver s;
+  for (const Scene& sc : builtin_scenes()) {
+    const Result r = s.solve(sc, s.default_mesh(sc), Options{});
+    BOOST_TEST_MESSAGE(sc.name << " [" << s.default_mesh(sc).spec() << "]: " << to_string(r.summary.status) << " in "
+                               << r.summary.total_time_s << " s; " << r.summary.method);
+    BOOST_TEST(r.ok());
+    BOOST_TEST(r.summary.dofs > 0);
+    BOOST_TEST(r.summary.max_residual < 1e-6);  // relative residual: includes rounding times condition
+    BOOST_TEST(static_cast<int>(r.frequencies_rad_s.size()) == sc.request.modes);
+    BOOST_TEST(r.deflections.size() == sc.request.probes.size());
+    if (sc.request.frf) BOOST_TEST(static_cast<int>(r.frf.size()) == sc.request.frf->points);
+    BOOST_TEST(has_phase(r, "assembly"));
+    if (sc.request.modes > 0) BOOST_TEST(has_phase(r, "eigen"));
+    if (!sc.request.probes.empty()) BOOST_TEST(has_phase(r, "statics"));
+    if (sc.request.frf) BOOST_TEST(has_phase(r, "frf"));
+    for (double w : r.frequencies_rad_s) BOOST_TEST(std::isfinite(w));
+#ifdef NDEBUG
+    BOOST_TEST(r.summary.total_time_s < 1.0);
+#endif
+  }
+}
+
+// A gross-error check (units, supports, loads), not an accuracy test: the default meshes are
+// chosen for speed; convergence is tested in test_beam and test_plate.
+BOOST_AUTO_TEST_CASE(default_mesh_agrees_with_exact_solver) {
+  const RfemSolver rf;
+  const exact::ExactSolver ex;
+  for (const Scene& sc : builtin_scenes()) {
+    const Result a = rf.solve(sc, rf.default_mesh(sc), Options{}), b = ex.solve(sc, {}, Options{});
+    if (!b.ok()) continue;
+    const std::size_t k = std::min(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
+    for (std::size_t i = 0; i < k; ++i) BOOST_TEST(rel(a.frequencies_rad_s[i], b.frequencies_rad_s[i]) < 5e-2);
+    for (std::size_t i = 0; i < std::min(a.deflections.size(), b.deflections.size()); ++i)
+      BOOST_TEST(std::abs(a.deflections[i].w - b.deflections[i].w) < 5e-2 * std::abs(b.deflections[i].w) + 1e-15);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(modal_frf_option) {
+  const Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
+  Options o;
+  o.frf_modes = 40;
+  const RfemSolver s;
+  const Result modal = s.solve(sc, Discretization{{64}}, o), direct = s.solve(sc, Discretization{{64}}, Options{});
+  BOOST_REQUIRE(modal.ok());
+  BOOST_TEST(modal.summary.method.find("modal superposition over 40 modes") != std::string::npos);
+  BOOST_TEST(static_cast<int>(modal.frequencies_rad_s.size()) == sc.request.modes);  // still the requested 6
+  BOOST_REQUIRE(modal.frf.size() == direct.frf.size());
+  // Below the first resonance the truncated modal sum is close to the direct solve.
+  for (std::size_t i = 0; i < modal.frf.size() && modal.frf[i].omega_rad_s < 5000; ++i)
+    BOOST_TEST(std::abs(modal.frf[i].receptance - direct.frf[i].receptance) < 1e-2 * std::abs(direct.frf[i].receptance));
+}
+
+BOOST_AUTO_TEST_CASE(free_plate_statics_is_a_mechanism) {
+  Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
+  sc.x0 = sc.xL = sc.y0 = sc.yB = Support::named("free");
+  sc.request.frf.reset();
+  const Result r = RfemSolver().solve(sc, Discretization{{10, 6}}, Options{});
+  BOOST_TEST((r.summary.status == Status::InvalidInput));
+  BOOST_TEST(r.summary.message.find("mechanism") != std::string::npos);
+  BOOST_TEST(r.frequencies_rad_s.size() == 8u);  // the modes are still computed ...
+  BOOST_TEST(r.frequencies_rad_s[0] == 0.0);     // ... the rigid ones as exact zeros
+  BOOST_TEST((r.mode_families[0] == ModeFamily::Rigid));
+}
