@@ -1,0 +1,137 @@
+// The dtfm back-end behind the Solver interface: capabilities, meshes, errors, summaries, and
+// the paper scenes end to end (frequencies, statics, FRF) against the exact back-end.
+#define BOOST_TEST_MODULE dtfm_solver
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "modalbench/dtfm/dtfm.hpp"
+#include "modalbench/exact.hpp"
+
+using namespace modalbench;
+using namespace modalbench::dtfm;
+
+namespace {
+Scene scene(const char* file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + file); }
+bool has_timing(const Summary& s, const std::string& name) {
+  for (auto& [n, t] : s.timings_s)
+    if (n == name) return t >= 0;
+  return false;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(interface)
+
+BOOST_AUTO_TEST_CASE(names_meshes_capabilities) {
+  const DtfmSolver s;
+  BOOST_TEST(s.name() == "dtfm");
+  BOOST_TEST(!s.description().empty());
+  const Scene beam = scene("paper_fixed_beam.toml"), plate = scene("paper_ss_plate.toml");
+  for (const Scene* sc : {&beam, &plate}) {
+    const Capability c = s.supports(*sc);
+    BOOST_TEST((c.modes && c.statics && c.frf));
+  }
+  BOOST_TEST(s.default_mesh(beam).spec() == "2x2");
+  BOOST_TEST(s.default_mesh(plate).spec() == "10");
+  std::vector<std::string> ladder;
+  for (auto& d : s.mesh_ladder(beam)) ladder.push_back(d.spec());
+  BOOST_TEST((ladder == std::vector<std::string>{"1x1", "2x2", "4x4", "8x8"}));
+  ladder.clear();
+  for (auto& d : s.mesh_ladder(plate)) ladder.push_back(d.spec());
+  BOOST_TEST((ladder == std::vector<std::string>{"4", "7", "10", "20", "40"}));
+}
+
+BOOST_AUTO_TEST_CASE(bad_mesh_is_invalid_input) {
+  const DtfmSolver s;
+  const Result r1 = s.solve(scene("paper_ss_plate.toml"), Discretization::parse("2x3"), {});
+  BOOST_TEST((r1.summary.status == Status::InvalidInput));
+  BOOST_TEST(r1.summary.message.find("--mesh") != std::string::npos);
+  const Result r2 = s.solve(scene("paper_fixed_beam.toml"), Discretization::parse("1x2x3"), {});
+  BOOST_TEST((r2.summary.status == Status::InvalidInput));
+  BOOST_TEST(r2.summary.message.find("--mesh") != std::string::npos);
+  const Result r3 = s.solve(scene("paper_fixed_beam.toml"), {}, {});
+  BOOST_TEST((r3.summary.status == Status::InvalidInput));
+}
+
+// A free-free beam has no static solution: InvalidInput naming the supports; its rigid modes
+// come out as such.
+BOOST_AUTO_TEST_CASE(mechanism_and_rigid_modes) {
+  Scene s = scene("paper_fixed_beam.toml");
+  s.x0 = s.xL = Support::named("free");
+  s.request.frf.reset();
+  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), {});
+  BOOST_TEST((r.summary.status == Status::InvalidInput));
+  BOOST_TEST(r.summary.message.find("supports") != std::string::npos);
+  BOOST_REQUIRE(r.frequencies_rad_s.size() == 6u);
+  BOOST_TEST((r.mode_families[0] == ModeFamily::Rigid && r.mode_families[1] == ModeFamily::Rigid));
+  BOOST_TEST(r.frequencies_rad_s[2] > 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(options_that_do_not_apply_are_reported) {
+  Options o;
+  o.mass = "lumped";
+  o.frf_modes = 10;
+  const Result r = DtfmSolver().solve(scene("paper_fixed_beam.toml"), Discretization::parse("1x1"), o);
+  BOOST_TEST(r.ok());
+  int hits = 0;
+  for (auto& w : r.summary.warnings) hits += (w.find("lumped") != std::string::npos) + (w.find("frf_modes") != std::string::npos);
+  BOOST_TEST(hits == 2);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(end_to_end)
+
+// The paper's beam with one prism is the exact back-end's beam: frequencies, probes, FRF.
+BOOST_AUTO_TEST_CASE(paper_beam_one_prism_equals_exact) {
+  const Scene s = scene("paper_fixed_beam.toml");
+  const Result d = DtfmSolver().solve(s, Discretization::parse("1x1"), {});
+  const Result e = exact::ExactSolver().solve(s, {}, {});
+  BOOST_REQUIRE(d.ok());
+  BOOST_REQUIRE(e.ok());
+  BOOST_REQUIRE(d.frequencies_rad_s.size() == e.frequencies_rad_s.size());
+  for (std::size_t i = 0; i < d.frequencies_rad_s.size(); ++i) {
+    BOOST_TEST(std::abs(d.frequencies_rad_s[i] / e.frequencies_rad_s[i] - 1) < 1e-9);
+    BOOST_TEST((d.mode_families[i] == e.mode_families[i]));
+  }
+  BOOST_REQUIRE(d.deflections.size() == e.deflections.size());
+  for (std::size_t i = 0; i < d.deflections.size(); ++i) {
+    BOOST_TEST(std::abs(d.deflections[i].w - e.deflections[i].w) < 1e-10 * std::abs(e.deflections[1].w));
+    BOOST_TEST(std::abs(d.deflections[i].theta_y - e.deflections[i].theta_y) < 1e-10 * std::abs(e.deflections[0].theta_y));
+  }
+  // Same samples (none on a resonance here), same values.
+  BOOST_REQUIRE(d.frf.size() == e.frf.size());
+  for (std::size_t i = 0; i < d.frf.size(); ++i)
+    BOOST_TEST(std::abs(d.frf[i].receptance - e.frf[i].receptance) < 1e-7 * std::abs(e.frf[i].receptance));
+  // Summary: method, DOFs, count evaluations, phases, Hamiltonian check.
+  const auto& sm = d.summary;
+  BOOST_TEST(sm.method.find("dtfm") != std::string::npos);
+  BOOST_TEST(sm.dofs == 2);
+  BOOST_TEST(sm.iterations > 0);
+  for (const char* phase : {"build", "frequencies", "statics", "frf"}) BOOST_TEST(has_timing(sm, phase));
+  BOOST_TEST(sm.max_residual < 1e-12);
+}
+
+// Both paper scenes with the default meshes: every requested quantity, finite, with families.
+BOOST_AUTO_TEST_CASE(paper_scenes_default_meshes) {
+  for (const char* file : {"paper_fixed_beam.toml", "paper_ss_plate.toml"}) {
+    const Scene s = scene(file);
+    const DtfmSolver solver;
+    const Result r = solver.solve(s, solver.default_mesh(s), {});
+    BOOST_TEST_CONTEXT(file) {
+      BOOST_TEST(r.ok());
+      BOOST_TEST(r.frequencies_rad_s.size() == static_cast<std::size_t>(s.request.modes));
+      for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i) {
+        BOOST_TEST(std::isfinite(r.frequencies_rad_s[i]));
+        BOOST_TEST((r.mode_families[i] == (s.is_plate() ? ModeFamily::Plate : ModeFamily::BendingXZ)));
+      }
+      BOOST_TEST(r.deflections.size() == s.request.probes.size());
+      BOOST_TEST(r.frf.size() + 2 >= static_cast<std::size_t>(s.request.frf->points));
+      BOOST_TEST(r.summary.dofs > 0);
+      BOOST_TEST(r.summary.max_residual < 1e-10);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
