@@ -13,6 +13,10 @@ namespace modalbench {
 
 namespace {
 
+// A cheap magnitude for balancing (|re| + |im| for complex: no hypot).
+inline double magnitude(double v) { return std::abs(v); }
+inline double magnitude(const std::complex<double>& v) { return std::abs(v.real()) + std::abs(v.imag()); }
+
 // exp() is accurate relative to the norm of its argument; the state matrices mix entries
 // of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
 // of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
@@ -29,8 +33,8 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
       double c = 0, r = 0;
       for (Eigen::Index j = 0; j < n2; ++j)
         if (j != i) {
-          c += std::abs(B(j, i));
-          r += std::abs(B(i, j));
+          c += magnitude(B(j, i));
+          r += magnitude(B(i, j));
         }
       if (c == 0 || r == 0) continue;
       int e = 0;
@@ -558,26 +562,38 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
 
 // ---- Long segments by doubling
 
+namespace {
+/// One doubling step on a symmetric segment matrix [K11 K12; K12^T K22] in place:
+/// condense the middle node of two copies. `X` and `rhs` are work space.
+template <class Mat, class Solver>
+void double_in_place(Mat& K, const Solver& solve, Eigen::Index m, Mat& rhs, Mat& X) {
+  rhs.resize(m, 2 * m);
+  rhs.leftCols(m) = K.bottomLeftCorner(m, m);  // K21
+  rhs.rightCols(m) = K.topRightCorner(m, m);   // K12
+  X = solve(rhs);                              // [S^-1 K21, S^-1 K12]
+  Mat out(2 * m, 2 * m);
+  out.topLeftCorner(m, m) = K.topLeftCorner(m, m);
+  out.topLeftCorner(m, m).noalias() -= K.topRightCorner(m, m) * X.leftCols(m);
+  out.topRightCorner(m, m).noalias() = -K.topRightCorner(m, m) * X.rightCols(m);
+  out.bottomLeftCorner(m, m).noalias() = -K.bottomLeftCorner(m, m) * X.leftCols(m);
+  out.bottomRightCorner(m, m) = K.bottomRightCorner(m, m);
+  out.bottomRightCorner(m, m).noalias() -= K.bottomLeftCorner(m, m) * X.rightCols(m);
+  K = 0.5 * (out + out.transpose());
+}
+}  // namespace
+
 LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels) {
   if (levels < 0) throw std::invalid_argument("long_segment_dynamic_stiffness: levels must be >= 0");
   LongSegment out;
   out.K = segment_dynamic_stiffness(A, std::ldexp(h, -levels), &out.asymmetry, &out.log_abs_det_tdf);
   const Eigen::Index m = out.K.rows() / 2;
+  Eigen::MatrixXd rhs, X;
   for (int level = 0; level < levels; ++level) {
-    const Eigen::MatrixXd K11 = out.K.topLeftCorner(m, m), K12 = out.K.topRightCorner(m, m);
-    const Eigen::MatrixXd K21 = out.K.bottomLeftCorner(m, m), K22 = out.K.bottomRightCorner(m, m);
-    const Eigen::MatrixXd S = K22 + K11;
-    const SymFactor f(S);
+    const SymFactor f(Eigen::MatrixXd(out.K.bottomRightCorner(m, m) + out.K.topLeftCorner(m, m)));
     out.clamped_below = 2 * out.clamped_below + f.negative;
     out.log_abs_det_tdf = 2 * out.log_abs_det_tdf + f.log_abs;
     if (f.max_abs > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, f.min_abs / f.max_abs);
-    const Eigen::MatrixXd SiK21 = f.solve(K21), SiK12 = f.solve(K12);
-    Eigen::MatrixXd K(2 * m, 2 * m);
-    K.topLeftCorner(m, m) = K11 - K12 * SiK21;
-    K.topRightCorner(m, m) = -K12 * SiK12;
-    K.bottomLeftCorner(m, m) = -K21 * SiK21;
-    K.bottomRightCorner(m, m) = K22 - K21 * SiK12;
-    out.K = 0.5 * (K + K.transpose());
+    double_in_place(out.K, [&](const Eigen::MatrixXd& B) { return f.solve(B); }, m, rhs, X);
   }
   return out;
 }
@@ -587,18 +603,19 @@ LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h,
   LongSegmentC out;
   out.K = segment_dynamic_stiffness(A, std::ldexp(h, -levels), &out.asymmetry);
   const Eigen::Index m = out.K.rows() / 2;
+  Eigen::MatrixXcd rhs, X;
   for (int level = 0; level < levels; ++level) {
-    const Eigen::MatrixXcd K11 = out.K.topLeftCorner(m, m), K12 = out.K.topRightCorner(m, m);
-    const Eigen::MatrixXcd K21 = out.K.bottomLeftCorner(m, m), K22 = out.K.bottomRightCorner(m, m);
-    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Eigen::MatrixXcd(K22 + K11));
-    out.min_pivot_rel = std::min(out.min_pivot_rel, lu.rcond());
-    const Eigen::MatrixXcd SiK21 = lu.solve(K21), SiK12 = lu.solve(K12);
-    Eigen::MatrixXcd K(2 * m, 2 * m);
-    K.topLeftCorner(m, m) = K11 - K12 * SiK21;
-    K.topRightCorner(m, m) = -K12 * SiK12;
-    K.bottomLeftCorner(m, m) = -K21 * SiK21;
-    K.bottomRightCorner(m, m) = K22 - K21 * SiK12;
-    out.K = 0.5 * (K + K.transpose());
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Eigen::MatrixXcd(out.K.bottomRightCorner(m, m) + out.K.topLeftCorner(m, m)));
+    // Pivot ratio as a cheap near-singularity indicator (rcond would cost extra solves).
+    const Eigen::VectorXcd d = lu.matrixLU().diagonal();
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (Eigen::Index i = 0; i < d.size(); ++i) {
+      const double a = std::abs(d[i].real()) + std::abs(d[i].imag());
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    if (hi > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, lo / hi);
+    double_in_place(out.K, [&](const Eigen::MatrixXcd& B) { return Eigen::MatrixXcd(lu.solve(B)); }, m, rhs, X);
   }
   return out;
 }
