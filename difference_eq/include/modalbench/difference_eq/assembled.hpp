@@ -54,6 +54,16 @@ struct Banded {
     }
     return neg;
   }
+  /// y = A x with the (unfactored) symmetric band.
+  std::vector<S> multiply(const std::vector<S>& x) const {
+    std::vector<S> y(n, S(0));
+    for (long i = 0; i < n; ++i)
+      for (long j = i; j <= std::min(n - 1, i + 3); ++j) {
+        y[i] += a[i][j - i] * x[j];
+        if (j != i) y[j] += a[i][j - i] * x[i];
+      }
+    return y;
+  }
   /// Solves with the factored matrix.
   void solve(std::vector<S>& b) const {
     for (long k = 0; k < n; ++k)
@@ -104,11 +114,13 @@ long count_below(const RegularBeam& b, MassModel mass, S lambda) {
   return A.factor(true);
 }
 
-/// Static solve: nodal w (m) and slope dw/dx.
+/// Static solve: nodal w (m) and slope dw/dx; `refine` steps of iterative refinement with the
+/// residual in S (the system's condition grows like R^4: at R = 1e6 even binary128 needs them).
 template <class S>
 void static_solve(const RegularBeam& b, const std::vector<NodalLoad>& loads, std::vector<S>& w,
-                  std::vector<S>& slope) {
+                  std::vector<S>& slope, int refine = 0) {
   Banded<S> A = dynamic_matrix<S>(b, MassModel::Consistent, S(0));
+  const Banded<S> A0 = refine > 0 ? A : Banded<S>(0);
   const long R = b.R;
   const S a = S(b.L) / S(static_cast<double>(R)), EI = S(b.EI);
   std::vector<S> f(2 * (R + 1), S(0));
@@ -121,7 +133,15 @@ void static_solve(const RegularBeam& b, const std::vector<NodalLoad>& loads, std
   for (int i = 0; i < 4; ++i)
     if (std::isinf(k[i])) f[dof[i]] = S(0);
   A.factor();
-  A.solve(f);
+  std::vector<S> x = f;
+  A.solve(x);
+  for (int it = 0; it < refine; ++it) {
+    std::vector<S> r = A0.multiply(x);
+    for (std::size_t i = 0; i < r.size(); ++i) r[i] = f[i] - r[i];
+    A.solve(r);
+    for (std::size_t i = 0; i < r.size(); ++i) x[i] += r[i];
+  }
+  f.swap(x);
   w.resize(R + 1);
   slope.resize(R + 1);
   for (long r = 0; r <= R; ++r) {
