@@ -77,10 +77,12 @@ class ShiftInvertOp {
     sigma_ = sigma;
   }
   void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
-    y = sys_.m() == 0 ? pd_.solve(x) : kkt_.solve(x);
-    if (R_.cols() > 0) y -= R_ * (MR_.transpose() * y);
+    if (sys_.m() == 0) pd_.solve_into(x_in, y_out);
+    else kkt_.solve_into(x_in, y_out);
+    if (R_.cols() > 0) {
+      Eigen::Map<Eigen::VectorXd> y(y_out, rows());
+      y -= R_ * (MR_.transpose() * y);
+    }
     ++operations_;
   }
   long operations() const { return operations_; }
@@ -321,12 +323,14 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
     }
     i = j;
   }
+  Eigen::VectorXd qbuf(sys.T.rows());
   for (long i = 0; i < total; ++i) {
     if (i < nr) {
       out.family.push_back(ModeFamily::Rigid);
       continue;
     }
-    const auto share = family_shares(model, sys.T * out.Z.col(i));
+    qbuf.noalias() = sys.T * out.Z.col(i);
+    const auto share = family_shares(model, qbuf);
     const auto best = std::max_element(share.begin(), share.end());
     const auto fam = static_cast<ModeFamily>(best - share.begin());
     out.family.push_back(*best >= 0.95 && fam != ModeFamily::Unknown ? fam : ModeFamily::Unknown);
@@ -336,14 +340,19 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
   const SpMat Ka = sys.K.cwiseAbs(), Ma = sys.M.cwiseAbs();
   double kmax = 0;
   for (long i = 0; i < n; ++i) kmax = std::max(kmax, std::abs(sys.K.coeff(i, i)));
+  Eigen::VectorXd Kz(n), Mz(n), za(n), scale_v(n), res_vec(n);
   for (long i = 0; i < total; ++i) {
-    const Eigen::VectorXd z = out.Z.col(i);
-    const Eigen::VectorXd Kz = sys.K * z, Mz = sys.M * z;
+    const auto z = out.Z.col(i);
+    Kz.noalias() = sys.K * z;
+    Mz.noalias() = sys.M * z;
     const double viol = m > 0 ? (sys.G * z).norm() / z.norm() : 0.0;
-    const Eigen::VectorXd res_vec = P(Kz - out.lambda[i] * Mz);
-    const Eigen::VectorXd za = z.cwiseAbs();
-    const double scale = (Ka * za + std::abs(out.lambda[i]) * (Ma * za)).norm();
-    double res = i < nr ? P(Kz).norm() / (std::max(kmax, 1e-300) * z.norm())
+    res_vec = Kz - out.lambda[i] * Mz;
+    if (m > 0) res_vec = P(res_vec);
+    za = z.cwiseAbs();
+    scale_v.noalias() = Ka * za;
+    scale_v.noalias() += std::abs(out.lambda[i]) * (Ma * za);
+    const double scale = scale_v.norm();
+    double res = i < nr ? (m > 0 ? P(Kz).norm() : Kz.norm()) / (std::max(kmax, 1e-300) * z.norm())
                         : res_vec.norm() / std::max({Kz.norm(), out.lambda[i] * Mz.norm(), 1e-300});
     res = std::max(res, viol);
     const double back = std::max(res_vec.norm() / std::max(scale, 1e-300), viol);
@@ -373,7 +382,7 @@ StaticSolution solve_static(const Model& model, const System& sys, const Eigen::
       long listed = 0, more = 0;
       for (long i = 0; i < z.size(); ++i)
         if (std::abs(z[i]) >= 0.5 * zmax) {
-          if (listed < 4) moved.push_back(sys.names[static_cast<std::size_t>(i)]), ++listed;
+          if (listed < 4) moved.push_back(coordinate_name(model, sys, i)), ++listed;
           else ++more;
         }
       if (more > 0) moved.push_back(fmt::format("... {} more", more));
@@ -395,7 +404,7 @@ StaticSolution solve_static(const Model& model, const System& sys, const Eigen::
     s.message = fmt::format(
         "stiffness matrix singular or indefinite: {} negative pivot(s), smallest pivot ratio {:.3g} at {}",
         fact ? ldlt.negative_count() : -1, ratio,
-        where >= 0 ? sys.names[static_cast<std::size_t>(where)] : std::string("?"));
+        where >= 0 ? coordinate_name(model, sys, where) : std::string("?"));
     return s;
   }
   const auto t1 = Clock::now();

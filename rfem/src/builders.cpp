@@ -36,7 +36,7 @@ Eigen::AlignedBox3d box(double x0, double x1, double y0, double y1, double z0, d
 // Beam
 // ---------------------------------------------------------------------------------------------
 
-Model build_beam(const Scene& s, int n) {
+Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
   if (!s.is_beam()) throw std::invalid_argument("build_beam: the scene is not a beam");
   if (n < 1) throw std::invalid_argument(fmt::format("build_beam: need >= 1 segment (got {})", n));
   const double L = s.geometry.length, bw = s.geometry.width, bh = s.geometry.height;
@@ -54,9 +54,13 @@ Model build_beam(const Scene& s, int n) {
   for (int dof : m.active) m.dof_family.push_back(beam_family(dof));
   m.length_scale = L;
   m.loss_factor = mat.loss_factor;
-  m.description = fmt::format("beam: {} segments, {} RFEs ({} at the nodes, half-length ends), {} SDEs, {} {}", n,
-                              n + 1, "centred", n, to_string(s.physics), eb ? "Euler-Bernoulli (rigid shear, exact)"
-                                                                            : "Timoshenko (shear SDE kGA/d)");
+  const bool joints = eb && opt.rigid_shear == RigidShear::JointCoordinates;
+  m.description = fmt::format(
+      "beam: {} segments, {} RFEs (centred at the nodes, half-length ends), {} SDEs, {} {}", n, n + 1, n,
+      to_string(s.physics),
+      !eb ? "Timoshenko (shear SDE kGA/d)"
+          : joints ? "Euler-Bernoulli (rigid shear exact: joint-displacement coordinates)"
+                   : "Euler-Bernoulli (rigid shear exact: constraints with multipliers)");
 
   // Rigid elements at the nodes x_j = j d.
   for (int j = 0; j <= n; ++j) {
@@ -79,8 +83,10 @@ Model build_beam(const Scene& s, int n) {
     sd.a = j;
     sd.b = j + 1;
     sd.point = Vector3d((j + 0.5) * d, 0, 0);
-    sd.stiffness << mat.E * sec.A / d, eb ? 0.0 : kGA / d, eb ? 0.0 : kGA / d, mat.G * sec.J / d, mat.E * sec.Iy / d,
-        mat.E * sec.Iz / d;
+    // Euler-Bernoulli: rigid shear (+inf: exact constraints), or none when the joint coordinates
+    // satisfy it identically.
+    const double shear = !eb ? kGA / d : joints ? 0.0 : kInf;
+    sd.stiffness << mat.E * sec.A / d, shear, shear, mat.G * sec.J / d, mat.E * sec.Iy / d, mat.E * sec.Iz / d;
     m.sdes.push_back(sd);
   }
   // End supports: SDEs to ground at the end points (the end RFEs' centres).
@@ -97,8 +103,8 @@ Model build_beam(const Scene& s, int n) {
   support(s.x0, 0, 0.0);
   support(s.xL, n, L);
 
-  // Euler-Bernoulli: generalized coordinates = transverse displacements of the end points and joints.
-  if (eb) {
+  // Euler-Bernoulli by joint coordinates: the transverse displacements of the end points and joints.
+  if (joints) {
     const int na = m.dofs_per_element();
     std::vector<Eigen::Triplet<double>> t;
     int col = 0;

@@ -129,35 +129,47 @@ SpMat KktLdlt::augmented(const SpMat& A) const {
   return Au;
 }
 
-SpMat KktLdlt::kkt(const SpMat& A) const {
-  SpMat K = K_;
-  if (A.isCompressed() && A.nonZeros() == a_nnz_) {
-    const double* av = A.valuePtr();
-    const double* gv = G_.valuePtr();
-    for (std::size_t p = 0; p < source_.size(); ++p) {
-      const long s = source_[p];
-      K.valuePtr()[p] = s >= 0 ? av[s] : s_ * gv[-s - 1];
-    }
-    return K;
+void KktLdlt::fill(const SpMat& A) {
+  if (!(A.isCompressed() && A.nonZeros() == a_nnz_))
+    throw std::invalid_argument("KktLdlt: matrix pattern differs from the analysed one");
+  const double* av = A.valuePtr();
+  const double* gv = G_.valuePtr();
+  for (std::size_t p = 0; p < source_.size(); ++p) {
+    const long s = source_[p];
+    K_.valuePtr()[p] = s >= 0 ? av[s] : s_ * gv[-s - 1];
   }
-  throw std::invalid_argument("KktLdlt: matrix pattern differs from the analysed one");
 }
 
 bool KktLdlt::factorize(const SpMat& A) {
   if (!analysed_) throw std::logic_error("KktLdlt::factorize before analyze");
-  const SpMat K = kkt(augmented(A));
-  diag_ = K.diagonal();
-  ldlt_.factorize(K);
+  if (m_ > 0) {
+    fill(augmented(A));
+  } else if (A.isCompressed()) {
+    fill(A);
+  } else {
+    SpMat Ac = A;
+    Ac.makeCompressed();
+    fill(Ac);
+  }
+  diag_ = K_.diagonal();
+  ldlt_.factorize(K_);
   return ldlt_.info() == Eigen::Success;
 }
 
 Eigen::VectorXd KktLdlt::solve(const Eigen::VectorXd& b) const {
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + m_);
-  for (long i = 0; i < n_; ++i) rhs[pos_[i]] = b[i];
-  const Eigen::VectorXd x = ldlt_.solve(rhs);
   Eigen::VectorXd out(n_);
-  for (long i = 0; i < n_; ++i) out[i] = x[pos_[i]];
+  solve_into(b.data(), out.data());
   return out;
+}
+
+void KktLdlt::solve_into(const double* b, double* x) const {
+  work_.setZero(n_ + m_);
+  for (long i = 0; i < n_; ++i) work_[pos_[i]] = b[i];
+  // In place: L, D, L' (natural ordering: the permutation is ours, applied above).
+  ldlt_.matrixL().solveInPlace(work_);
+  work_.array() /= ldlt_.vectorD().array();
+  ldlt_.matrixU().solveInPlace(work_);
+  for (long i = 0; i < n_; ++i) x[i] = work_[pos_[i]];
 }
 
 long KktLdlt::negative_count() const {
@@ -184,10 +196,33 @@ double KktLdlt::smallest_primal_pivot_ratio(long* where) const {
 
 struct PdFactor::Impl : public Eigen::CholmodDecomposition<SpMat, Eigen::Lower> {
   bool is_super() const { return this->m_cholmodFactor != nullptr && this->m_cholmodFactor->is_super; }
+  cholmod_factor* factor() const { return this->m_cholmodFactor; }
+  cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;  // reused by cholmod_solve2
+  ~Impl() {
+    for (cholmod_dense** d : {&X, &Y, &E})
+      if (*d) cholmod_free_dense(d, &this->cholmod());
+  }
 };
 
 PdFactor::PdFactor() : impl_(std::make_unique<Impl>()) {}
 PdFactor::~PdFactor() = default;
+
+void PdFactor::solve_into(const double* b, double* x) const {
+  cholmod_factor* L = impl_->factor();
+  if (!L) throw std::logic_error("PdFactor::solve_into before factorize");
+  const std::size_t n = L->n;
+  cholmod_dense B{};
+  B.nrow = n;
+  B.ncol = 1;
+  B.nzmax = n;
+  B.d = n;
+  B.x = const_cast<double*>(b);
+  B.xtype = CHOLMOD_REAL;
+  B.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(CHOLMOD_A, L, &B, nullptr, &impl_->X, nullptr, &impl_->Y, &impl_->E, &impl_->cholmod()))
+    throw std::runtime_error("CHOLMOD solve failed");
+  std::copy_n(static_cast<const double*>(impl_->X->x), n, x);
+}
 
 void PdFactor::analyze(const SpMat& pattern) {
   impl_->analyzePattern(pattern);

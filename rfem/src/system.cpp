@@ -148,14 +148,11 @@ System assemble(const Model& m) {
 
   // Generalized coordinates of the builder (or q itself), then the held ones eliminated: q = T z.
   SpMat B;
-  std::vector<std::string> names0;
   if (m.basis.cols() > 0) {
     B = m.basis;
-    names0 = m.basis_names;
   } else {
     B.resize(nq, nq);
     B.setIdentity();
-    for (long i = 0; i < nq; ++i) names0.push_back(m.dof_name(i));
   }
   const Eigen::SparseMatrix<double, Eigen::RowMajor> Brow = B;
   auto to_z0 = [&](const SparseRow& row) {
@@ -173,7 +170,7 @@ System assemble(const Model& m) {
   sys.T = B * elim.substitution(free_index);
   sys.T.makeCompressed();
   for (std::size_t j = 0; j < free_index.size(); ++j)
-    if (free_index[j] >= 0) sys.names.push_back(names0[j]);
+    if (free_index[j] >= 0) sys.origin.push_back(static_cast<long>(j));
   const long n = sys.T.cols();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> Tr = sys.T;
   const int* tp = Tr.outerIndexPtr();
@@ -280,6 +277,11 @@ System assemble(const Model& m) {
   sys.G = G;
   sys.G.makeCompressed();
   return sys;
+}
+
+std::string coordinate_name(const Model& m, const System& sys, long i) {
+  const long j = sys.origin.at(static_cast<std::size_t>(i));
+  return m.basis.cols() > 0 ? m.basis_names.at(static_cast<std::size_t>(j)) : m.dof_name(j);
 }
 
 std::vector<std::pair<int, double>> containing_elements(const Model& m, const Eigen::Vector3d& P) {

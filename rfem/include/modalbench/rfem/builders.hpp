@@ -7,10 +7,16 @@
 // length d, the two end ones of length d / 2 (mass rho A l; Jx = rho Ip l; Jy = m l^2/12 + rho Iy l
 // and Jz alike, the rho I l terms only for Timoshenko scenes). End supports are SDEs to ground at
 // the end points with the scene's springs; +inf holds the component exactly (eliminated).
-// Euler-Bernoulli scenes: the shear springs are rigid, exactly: the generalized coordinates are
-// the transverse displacements of the end points and of the n joints (the rigid elements then
-// form a Hencky chain), so every shear deformation vanishes identically -- no penalty, no
-// multiplier.
+// Euler-Bernoulli scenes: the shear springs are rigid, exactly (no penalty), in one of two ways:
+//  - Multipliers (default): the rigid shear components are linear constraints between
+//    neighbouring RFEs, solved with Lagrange multipliers (system.hpp). The unknowns stay the
+//    RFE displacements and rotations, so the matrices keep the conditioning of a second-order
+//    operator (~ n^2).
+//  - JointCoordinates: the generalized coordinates are the transverse displacements of the end
+//    points and of the n joints (a Hencky chain): every shear deformation vanishes identically.
+//    Exact too, but the stiffness becomes a fourth difference (condition ~ n^4): the lowest
+//    eigenvalues lose all accuracy near n = 10^4 in double precision. Kept as an independent
+//    second method for tests.
 //
 // Plate (nx x ny fragments of the primary division, Delta_l = a / nx, Delta_b = b / ny; seed
 // rfem-plate-appendix.txt with ERRATA.md): RFEs at the fragment corners, types 1-4 with full,
@@ -37,8 +43,12 @@
 
 namespace modalbench::rfem {
 
+enum class RigidShear { Multipliers, JointCoordinates };
+struct BeamOptions {
+  RigidShear rigid_shear = RigidShear::Multipliers;  ///< Euler-Bernoulli scenes only
+};
 /// Beam scene -> model with `segments` >= 1 primary segments. Throws std::invalid_argument.
-Model build_beam(const Scene& scene, int segments);
+Model build_beam(const Scene& scene, int segments, const BeamOptions& options = {});
 
 struct PlateOptions {
   int nx = 10, ny = 6;             ///< fragments along x (length a) and y (width b), each >= 1

@@ -40,6 +40,8 @@ class KktLdlt {
   bool factorize(const SpMat& A);
   /// Primal part x of the KKT solve with right-hand side [b; 0] (x satisfies G x = 0).
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// The same into preallocated memory (no allocation: the Lanczos inner loop).
+  void solve_into(const double* b, double* x) const;
   /// Negative pivots minus the number of constraints (eigenvalues of the pencil below the shift).
   long negative_count() const;
   /// Smallest |pivot| / |diagonal| over the primal pivots, and the primal unknown where it occurs.
@@ -49,7 +51,7 @@ class KktLdlt {
 
  private:
   SpMat augmented(const SpMat& A) const;  // A + s G'G
-  SpMat kkt(const SpMat& A) const;
+  void fill(const SpMat& A);               // A's (augmented) values into K_
   long n_ = 0, m_ = 0;
   double s_ = 1;                       // constraint scaling
   Eigen::VectorXi pos_;                // new position of old unknown (primal 0..n-1, multipliers n..)
@@ -59,6 +61,7 @@ class KktLdlt {
   long a_nnz_ = 0;
   Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::VectorXd diag_;               // permuted diagonal of the last factored matrix
+  mutable Eigen::VectorXd work_;       // permuted right-hand side / solution
   bool analysed_ = false;
 };
 
@@ -72,6 +75,8 @@ class PdFactor {
   void analyze(const SpMat& pattern);
   bool factorize(const SpMat& A);  ///< false if A is not (numerically) positive definite
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// x = A^{-1} b with CHOLMOD's reusable workspace (no allocation after the first call).
+  void solve_into(const double* b, double* x) const;
   bool supernodal() const;
   std::string name() const;  ///< "CHOLMOD supernodal LL'" or "CHOLMOD simplicial LL'"
 

@@ -24,7 +24,7 @@ struct System {
   SpMat K, M, C;  ///< over z, full symmetric storage
   SpMat G;        ///< independent constraint rows (unit 2-norm), m x n; m = 0 without rigid links
   SpMat T;        ///< q = T z
-  std::vector<std::string> names;  ///< of the coordinates z
+  std::vector<long> origin;        ///< per coordinate z: its index among the builder's coordinates
   long held = 0;                   ///< coordinates removed by rigid supports
   long redundant = 0;              ///< rigid constraints dropped as dependent
   long n() const { return static_cast<long>(K.rows()); }
@@ -32,6 +32,9 @@ struct System {
 };
 
 System assemble(const Model& model);
+
+/// Name of coordinate i of z (e.g. "w[rfe 3]", or the builder's basis name).
+std::string coordinate_name(const Model& model, const System& sys, long i);
 
 /// RFEs whose cell contains P (relative tolerance 1e-9 of the length scale), each with weight
 /// 1 / count: a point on a cell boundary belongs equally to the RFEs that share it.
