@@ -82,6 +82,13 @@ std::vector<Discretization> RfemSolver::mesh_ladder(const Scene& s) const {
   return v;
 }
 
+std::vector<Discretization> RfemSolver::stress_meshes(const Scene& s) const {
+  if (s.is_beam()) return {{{10000}}, {{100000}}};
+  const double a = s.geometry.length, b = s.geometry.width, longest = std::max(a, b);
+  return {{{std::max(2, static_cast<int>(std::lround(100.0 * a / longest))),
+            std::max(2, static_cast<int>(std::lround(100.0 * b / longest)))}}};
+}
+
 Model RfemSolver::build(const Scene& s, const Discretization& mesh) {
   const std::string src = mesh_source(s);
   if (s.is_beam()) {

@@ -3,6 +3,7 @@
 #define BOOST_TEST_MODULE rfem_solver
 #include <boost/test/unit_test.hpp>
 
+#include <ctime>
 #include <filesystem>
 
 #include "modalbench/rfem/rfem.hpp"
@@ -75,7 +76,9 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
 BOOST_AUTO_TEST_CASE(builtin_scenes_solve_on_the_default_mesh) {
   const RfemSolver s;
   for (const Scene& sc : builtin_scenes()) {
+    const std::clock_t c0 = std::clock();
     const Result r = s.solve(sc, s.default_mesh(sc), Options{});
+    const double cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     BOOST_TEST_MESSAGE(sc.name << " [" << s.default_mesh(sc).spec() << "]: " << to_string(r.summary.status) << " in "
                                << r.summary.total_time_s << " s; " << r.summary.method);
     BOOST_TEST(r.ok());
@@ -90,7 +93,8 @@ BOOST_AUTO_TEST_CASE(builtin_scenes_solve_on_the_default_mesh) {
     if (sc.request.frf) BOOST_TEST(has_phase(r, "frf"));
     for (double w : r.frequencies_rad_s) BOOST_TEST(std::isfinite(w));
 #ifdef NDEBUG
-    BOOST_TEST(r.summary.total_time_s < 1.0);
+    // CPU time, not wall time: the machine is shared, the default mesh must be fast (< 1 s).
+    BOOST_TEST(cpu_s < 1.0);
 #endif
   }
 }

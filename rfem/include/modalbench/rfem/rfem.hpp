@@ -40,6 +40,8 @@ class RfemSolver final : public Solver {
   Capability supports(const Scene& scene) const override;
   Discretization default_mesh(const Scene& scene) const override;
   std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
+  /// Beams 10,000 and 100,000 segments; plates 100 fragments along the longer side.
+  std::vector<Discretization> stress_meshes(const Scene& scene) const override;
 
   /// The model for a scene and mesh. Throws InputError (key "--mesh") for a bad mesh.
   static Model build(const Scene& scene, const Discretization& mesh);
