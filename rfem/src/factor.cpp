@@ -64,10 +64,10 @@ void KktLdlt::analyze(const SpMat& pattern, const SpMat& G) {
   G_ = G;
   G_.makeCompressed();
   // Primal graph: A's pattern plus the couplings through the constraint rows.
-  SpMat P = pattern.cwiseAbs();
+  SpMat P = pattern;
   if (m_ > 0) {
     const SpMat Ga = G_.cwiseAbs();
-    P = P + SpMat(Ga.transpose() * Ga);
+    P = SpMat(pattern.cwiseAbs()) + SpMat(Ga.transpose() * Ga);
   }
   const Eigen::VectorXi order = amd_order(P);
   std::vector<long> rank(static_cast<std::size_t>(n_));
@@ -98,20 +98,28 @@ void KktLdlt::analyze(const SpMat& pattern, const SpMat& G) {
   if (m_ > 0) GtG_ = SpMat(G_.transpose() * G_);
   SpMat Ac = augmented(pattern);
   a_nnz_ = Ac.nonZeros();
-  // The permuted matrix with each nonzero tagged by its source (A's value index or G's).
-  std::vector<Triplet> t;
-  t.reserve(static_cast<std::size_t>(a_nnz_ + 2 * G_.nonZeros()));
-  for (int j = 0; j < Ac.outerSize(); ++j)
-    for (int p = Ac.outerIndexPtr()[j]; p < Ac.outerIndexPtr()[j + 1]; ++p)
-      t.emplace_back(pos_[Ac.innerIndexPtr()[p]], pos_[j], static_cast<double>(p) + 1.0);
-  for (int j = 0; j < G_.outerSize(); ++j)
-    for (int p = G_.outerIndexPtr()[j]; p < G_.outerIndexPtr()[j + 1]; ++p) {
-      const int r = pos_[n_ + G_.innerIndexPtr()[p]], c = pos_[j];
-      t.emplace_back(r, c, -(static_cast<double>(p) + 1.0));
-      t.emplace_back(c, r, -(static_cast<double>(p) + 1.0));
-    }
-  K_.resize(n_ + m_, n_ + m_);
-  K_.setFromTriplets(t.begin(), t.end());
+  // The permuted matrix with each nonzero tagged by its source (A's value index + 1, or -(G's + 1)).
+  SpMat At = Ac;
+  for (long p = 0; p < a_nnz_; ++p) At.valuePtr()[p] = static_cast<double>(p) + 1.0;
+  if (m_ == 0) {
+    Perm Pm(n_);
+    for (long i = 0; i < n_; ++i) Pm.indices()[i] = pos_[i];
+    K_ = At.selfadjointView<Eigen::Lower>().twistedBy(Pm);
+  } else {
+    std::vector<Triplet> t;
+    t.reserve(static_cast<std::size_t>(a_nnz_ + 2 * G_.nonZeros()));
+    for (int j = 0; j < At.outerSize(); ++j)
+      for (int p = At.outerIndexPtr()[j]; p < At.outerIndexPtr()[j + 1]; ++p)
+        t.emplace_back(pos_[At.innerIndexPtr()[p]], pos_[j], At.valuePtr()[p]);
+    for (int j = 0; j < G_.outerSize(); ++j)
+      for (int p = G_.outerIndexPtr()[j]; p < G_.outerIndexPtr()[j + 1]; ++p) {
+        const int r = pos_[n_ + G_.innerIndexPtr()[p]], c = pos_[j];
+        t.emplace_back(r, c, -(static_cast<double>(p) + 1.0));
+        t.emplace_back(c, r, -(static_cast<double>(p) + 1.0));
+      }
+    K_.resize(n_ + m_, n_ + m_);
+    K_.setFromTriplets(t.begin(), t.end());
+  }
   K_.makeCompressed();
   source_.resize(static_cast<std::size_t>(K_.nonZeros()));
   for (long p = 0; p < K_.nonZeros(); ++p) {
