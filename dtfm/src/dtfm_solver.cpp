@@ -31,15 +31,17 @@ Discretization DtfmSolver::default_mesh(const Scene& scene) const {
 }
 
 std::vector<Discretization> DtfmSolver::mesh_ladder(const Scene& scene) const {
+  std::vector<const char*> specs;
+  if (scene.is_plate()) specs = {"4", "7", "10", "20", "40"};
+  else if (scene.physics == Physics::Spatial) specs = {"1x1", "2x2", "4x4", "6x6"};  // 6 fields per prism
+  else specs = {"1x1", "2x2", "4x4", "8x8"};
   std::vector<Discretization> out;
-  for (const char* m : scene.is_plate() ? std::vector<const char*>{"4", "7", "10", "20", "40"}
-                                        : std::vector<const char*>{"1x1", "2x2", "4x4", "8x8"})
-    out.push_back(Discretization::parse(m));
+  for (const char* m : specs) out.push_back(Discretization::parse(m));
   return out;
 }
 
 std::vector<Discretization> DtfmSolver::stress_meshes(const Scene& scene) const {
-  return {Discretization::parse(scene.is_plate() ? "40" : "8x8")};
+  return {mesh_ladder(scene).back()};
 }
 
 void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
@@ -49,8 +51,9 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
   auto& sum = r.summary;
   sum.method = "dtfm: " + model.description +
                "; segment dynamic stiffness, Wittrick-Williams count with Brent polish";
+  // Modelling notes (not doubts about the numbers) belong to the method, not the warnings.
+  for (const auto& n : model.notes) sum.method += "; " + n;
   sum.dofs = model.m;
-  for (const auto& n : model.notes) sum.warnings.push_back("note: " + n);
   if (options.mass == "lumped")
     sum.warnings.push_back("--mass lumped does not apply: the prisms' mass is distributed (consistent) along x");
   if (options.frf_modes > 0)

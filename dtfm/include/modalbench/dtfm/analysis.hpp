@@ -42,9 +42,10 @@ struct ModeList {
   std::vector<ModeFamily> family;
   std::vector<int> cls;             ///< symmetry class of each mode
   std::vector<double> family_share; ///< kinetic-energy share of the class's rigid-section motion (beams)
+  std::vector<char> reproducible;   ///< per non-rigid mode: its count reproduces on a second discretization
   int rigid = 0;
   long evaluations = 0;             ///< count / determinant evaluations
-  bool count_consistent = true;     ///< a fresh-mesh count agrees with the modes returned
+  bool count_consistent = true;     ///< every mode reproduces (count just below / above it, second discretization)
   std::string count_message;
 };
 
@@ -86,6 +87,7 @@ class LineAnalysis {
   struct Mesh {
     std::vector<double> x;
     double h_base = 0;
+    double h_im = 0, h_re = 0;  ///< the two bounds behind h_base (oscillatory, evanescent)
   };
   struct Assembled;
 

@@ -61,7 +61,7 @@ struct ModelOptions {
   /// Kirchhoff plates: the layers' transverse shear (gamma_yz = 0 in Kirchhoff theory) is a
   /// penalty of this many times 12 D / dy^3 per unit length (the bending stiffness of a strip of
   /// width dy); the relative error in omega^2 is below (k_y dy)^2 / (12 penalty).
-  double kirchhoff_penalty = 100.0;
+  double kirchhoff_penalty = 10.0;
 };
 
 /// A prism (beam cell) or strip (plate): reference point and section.
