@@ -336,6 +336,9 @@ void solve_static(const RegularBeam& b, const std::vector<NodalLoad>& loads, Sta
   b.validate(false);
   check_loads(b, loads);
   if (rigid_body_modes(b) > 0) throw Mechanism(mechanism_message(b));
+  if (method == StaticMethod::EigenfunctionExpansion && b.R > kMaxEigenfunctionR)
+    throw std::invalid_argument("the eigenfunction expansion costs O(R^2): R must be <= " +
+                                std::to_string(kMaxEigenfunctionR) + " (use the piecewise-cubic closed form)");
   out.warnings.clear();
   out.reactions = {};
   double k[4];

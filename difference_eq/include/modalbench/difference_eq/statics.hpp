@@ -52,6 +52,9 @@ struct StaticSolution {
   std::vector<std::string> warnings;
 };
 
+/// Largest R accepted by the O(R^2) eigenfunction route.
+inline constexpr long kMaxEigenfunctionR = 50000;
+
 /// Above this support flexibility (in units of L^3/EI) the result carries a near-mechanism warning.
 inline constexpr double kNearMechanismFlexibility = 1e4;
 
