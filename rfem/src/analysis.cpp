@@ -188,8 +188,11 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
     out.warnings.push_back(fmt::format("only {} flexible modes exist in this model ({} requested)", n_eff, kf));
     kf = n_eff;
   }
+  // Dense when small; also when most of a moderate spectrum is wanted (Lanczos would need a
+  // subspace close to the whole space). Its cost grows like n (m + r)^2, hence the bounds on n.
   const bool dense = opt.method == EigenMethod::Dense ||
-                     (opt.method == EigenMethod::Auto && (n_eff <= opt.dense_limit || 3 * kf >= n_eff));
+                     (opt.method == EigenMethod::Auto &&
+                      (n <= opt.dense_limit || (3 * kf >= n_eff && n <= 4 * opt.dense_limit) || n_eff < 40));
   Flexible flex;
   std::string how;
   if (kf > 0 && dense) {
