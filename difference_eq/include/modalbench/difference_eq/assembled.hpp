@@ -34,15 +34,12 @@ struct Banded {
     for (long k = std::max(0L, i - 3); k < i; ++k) a[k][i - k] = S(0);
     a[i] = {S(1), S(0), S(0), S(0)};
   }
-  /// In-place LDL^T; returns the number of negative pivots. A zero pivot throws, unless
-  /// `counting` (then it is taken as +tiny: lambda sits on an eigenvalue to working precision).
-  long factor(bool counting = false) {
+  /// In-place LDL^T; returns the number of negative pivots. Throws on an exactly zero pivot
+  /// (no pivoting: the inertia is then undetermined, not "+tiny").
+  long factor() {
     long neg = 0;
     for (long k = 0; k < n; ++k) {
-      if (a[k][0] == S(0)) {
-        if (!counting) throw std::runtime_error("assembled: zero pivot");
-        a[k][0] = S(1e-200);
-      }
+      if (a[k][0] == S(0)) throw std::runtime_error("assembled: zero pivot");
       const S d = a[k][0];
       if (d < S(0)) ++neg;
       const long last = std::min(n - 1, k + 3);
@@ -107,11 +104,20 @@ S omega_scale(const RegularBeam& b, MassModel mass) {
   return S(b.rhoA) * a * a * a * a / (S(mass == MassModel::Consistent ? 420.0 : 2.0) * S(b.EI));
 }
 
-/// Sturm count: natural frequencies with omega^2 < lambda.
+/// Sturm count: natural frequencies with omega^2 < lambda. An exactly zero pivot (integer
+/// element matrices make that happen at round lambda) moves lambda up by a relative 2^-90, then
+/// 2^-70, 2^-50: the count is piecewise constant, so this is the count just above lambda.
 template <class S>
 long count_below(const RegularBeam& b, MassModel mass, S lambda) {
-  Banded<S> A = dynamic_matrix<S>(b, mass, lambda * omega_scale<S>(b, mass));
-  return A.factor(true);
+  for (int e = 90;; e -= 20) {
+    Banded<S> A = dynamic_matrix<S>(b, mass, lambda * omega_scale<S>(b, mass));
+    try {
+      return A.factor();
+    } catch (const std::runtime_error&) {
+      if (e < 50) throw;
+      lambda = lambda + lambda * S(std::ldexp(1.0, -e));
+    }
+  }
 }
 
 /// Static solve: nodal w (m) and slope dw/dx; `refine` steps of iterative refinement with the
