@@ -207,8 +207,8 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   m.length_scale = std::max(a, b);
   m.loss_factor = mat.loss_factor;
   m.description = fmt::format(
-      "plate: {}x{} fragments, {}x{} RFEs at the fragment corners (Table A2.1 types 1-4), {} shear{}", nx, ny, nx + 1,
-      ny + 1, kirchhoff ? "rigid transverse shear (Kirchhoff, exact constraints)" : "springs kGh (Mindlin)",
+      "plate: {}x{} fragments, {}x{} RFEs at the fragment corners (Table A2.1 types 1-4), {}{}", nx, ny, nx + 1,
+      ny + 1, kirchhoff ? "rigid transverse shear (Kirchhoff, exact constraints)" : "shear springs kGh (Mindlin)",
       o.bending_correction ? ", per-fragment Poisson/twist correction" : ", Table A1.1 springs only (no Poisson coupling)");
 
   auto id = [&](int i, int j) { return j * (nx + 1) + i; };
