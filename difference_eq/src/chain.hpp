@@ -42,7 +42,6 @@ struct Chain {
   Chain(long R, const MassCoeffs& m, double Omega);
   Eigen::Matrix4d end_stiffness() const;
   Eigen::Matrix4d characteristic_matrix(const std::array<double, 4>& k) const;
-  double max_imaginary() const;
   /// |sin| of the angle between the two end-displacement columns of each parity (0 at a pole of D).
   double pole_closeness() const;
 };

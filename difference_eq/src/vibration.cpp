@@ -252,17 +252,6 @@ double Chain::pole_closeness() const {
   return m;
 }
 
-double Chain::max_imaginary() const {
-  double im = 0, re = 0;
-  for (int p = 0; p < 2; ++p)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) {
-        im = std::max({im, std::abs(E[p][j][i].imag()), std::abs(F[p][j][i].imag())});
-        re = std::max({re, std::abs(E[p][j][i].real()), std::abs(F[p][j][i].real())});
-      }
-  return re > 0 ? im / re : im;
-}
-
 int negative_eigenvalues(const Eigen::MatrixXd& A) {
   const Eigen::Index n = A.rows();
   if (n == 0) return 0;
