@@ -8,8 +8,12 @@
 // omega_max). The segments are assembled into a block-tridiagonal K(omega^2); the
 // Wittrick-Williams count is the LDL^T inertia of K plus the segments' J0 (from the doubling).
 //   - natural frequencies: count-driven bisection until an interval holds one eigenvalue of a
-//     class, then Brent's method on the signed determinant (one mesh for the whole range, so
-//     det K is continuous); repeated values keep their multiplicity;
+//     class, then Brent's method on det K * prod det Tdf (the characteristic function without
+//     the segments' poles; one mesh for the whole range); repeated values keep their
+//     multiplicity; every mode is then counted again just below and above it on a second
+//     discretization (other base pieces, other rounding): a mode that does not reproduce to
+//     5e-5 is reported (rounding floor of stiff layers against very slender spans or soft
+//     supports);
 //   - statics: K(0) d = f;
 //   - FRF: K(omega^2) d = f, or with structural damping (stiffness x (1 + i eta)) the complex
 //     solve K(omega^2 / (1 + i eta)) d = f / (1 + i eta).
