@@ -121,7 +121,7 @@ struct Flexible {
   Eigen::MatrixXd Z;
 };
 
-Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, std::string& method) {
+Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, double sigma, std::string& method) {
   const long n = sys.n(), m = sys.m(), r = R.cols();
   Eigen::MatrixXd N;
   if (m + r > 0) {
@@ -138,14 +138,44 @@ Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, 
   Eigen::MatrixXd Kr = N.transpose() * (sys.K * N), Mr = N.transpose() * (sys.M * N);
   Kr = 0.5 * (Kr + Kr.transpose()).eval();
   Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  const long k = std::min<long>(want, N.cols());
+  const std::string basis =
+      m + r > 0 ? fmt::format(" (orthonormal basis of G z = 0{})", r > 0 ? ", rigid modes deflated" : "") : "";
+  Flexible f;
+  // Shift-invert form, as the Lanczos path: (Kr - sigma Mr) = L L', eigenvalues mu of
+  // L^-1 Mr L^-T, lambda = sigma + 1/mu. Its absolute error is eps / (lambda_1 - sigma), so the
+  // low modes keep their relative accuracy when the stiffness spans many decades (stiff
+  // supports); the forward form (Cholesky of Mr) errs by eps * lambda_max and lost the
+  // fundamental of a beam on 1e12 EI/L^3 springs.
+  Eigen::LLT<Eigen::MatrixXd> llt(Kr - sigma * Mr);
+  if (llt.info() == Eigen::Success) {
+    Eigen::MatrixXd B = llt.matrixL().solve(llt.matrixL().solve(Mr).transpose());
+    B = 0.5 * (B + B.transpose()).eval();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(B);
+    if (es.info() != Eigen::Success) throw std::runtime_error("dense symmetric eigensolver failed");
+    const long nb = B.rows();
+    f.lambda.resize(k);
+    Eigen::MatrixXd Y(nb, k);
+    for (long i = 0; i < k; ++i) {
+      const double mu = es.eigenvalues()[nb - 1 - i];  // largest mu = lowest lambda
+      f.lambda[i] = sigma + 1.0 / mu;
+      Y.col(i) = es.eigenvectors().col(nb - 1 - i);
+    }
+    f.Z = N * llt.matrixU().solve(Y);
+    method = fmt::format(
+        "dense shift-invert symmetric eigensolver (Eigen: Cholesky of K - sigma M, sigma = {:.6g} rad^2/s^2, tridiagonal "
+        "QR) on {} unknowns{}",
+        sigma, N.cols(), basis);
+    return f;
+  }
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
   if (ges.info() != Eigen::Success) throw std::runtime_error("dense generalized eigensolver failed");
-  const long k = std::min<long>(want, N.cols());
-  Flexible f;
   f.lambda = ges.eigenvalues().head(k);
   f.Z = N * ges.eigenvectors().leftCols(k);
-  method = fmt::format("dense generalized symmetric eigensolver (Eigen, Cholesky + tridiagonal QR) on {} unknowns{}",
-                       N.cols(), m + r > 0 ? fmt::format(" (orthonormal basis of G z = 0{})", r > 0 ? ", rigid modes deflated" : "") : "");
+  method = fmt::format(
+      "dense generalized symmetric eigensolver (Eigen, Cholesky of M + tridiagonal QR; K - sigma M was not positive "
+      "definite at sigma = {:.6g}) on {} unknowns{}",
+      sigma, N.cols(), basis);
   return f;
 }
 
@@ -196,7 +226,46 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
   Flexible flex;
   std::string how;
   if (kf > 0 && dense) {
-    flex = dense_flexible(sys, R, kf, how);
+    const double sigma = choose_shift(model, sys);
+    flex = dense_flexible(sys, R, kf, sigma, how);
+    // Two steps of subspace iteration with the sparse operator on the full coordinates, each
+    // closed by Rayleigh-Ritz: the reduced matrices of the dense path are formed through the
+    // constraint basis, which spreads the rounding of stiff supports over every coordinate;
+    // W' (K - sigma M) W = W' M Z needs no product with K, so the refined pairs do not inherit it
+    // (beam on 1e12 EI/L^3 springs, 128 segments: backward error 1e-7 -> 5e-9).
+    try {
+      ShiftInvertOp op(sys, R);
+      op.set_shift(sigma);
+      const long k = flex.lambda.size();
+      bool refined = true;
+      for (int step = 0; step < 2 && refined; ++step) {
+        const Eigen::MatrixXd MZ = sys.M * flex.Z;
+        Eigen::MatrixXd W(n, k);
+        Eigen::VectorXd s(k);
+        for (long j = 0; j < k; ++j) {
+          op.perform_op(MZ.col(j).data(), W.col(j).data());
+          s[j] = 1.0 / std::sqrt(W.col(j).dot(sys.M * W.col(j)));
+          W.col(j) *= s[j];
+        }
+        Eigen::MatrixXd A = W.transpose() * MZ * s.asDiagonal();  // W' (K - sigma M) W
+        A = 0.5 * (A + A.transpose()).eval();
+        Eigen::MatrixXd B = W.transpose() * (sys.M * W);
+        B = 0.5 * (B + B.transpose()).eval();
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(A, B);
+        refined = rr.info() == Eigen::Success && rr.eigenvalues().minCoeff() > 0;
+        if (refined) {
+          flex.lambda = (rr.eigenvalues().array() + sigma).matrix();
+          flex.Z = W * rr.eigenvectors();
+        }
+      }
+      out.factor_seconds += op.factor_seconds();
+      if (refined)
+        how += fmt::format("; refined by two shift-invert subspace steps on the full coordinates ({})", op.solver_name());
+      else
+        out.warnings.push_back("dense eigenpairs not refined: the Rayleigh-Ritz step failed");
+    } catch (const std::exception& e) {
+      out.warnings.push_back(fmt::format("dense eigenpairs not refined: {}", e.what()));
+    }
   } else if (kf > 0) {
     if (kf >= n_eff) throw std::runtime_error("shift-invert Lanczos needs fewer modes than unknowns; use the dense solver");
     const double sigma = choose_shift(model, sys);
