@@ -97,6 +97,15 @@ std::vector<Discretization> DifferenceEqSolver::mesh_ladder(const Scene& s) cons
   return out;
 }
 
+std::vector<Discretization> DifferenceEqSolver::stress_meshes(const Scene& s) const {
+  std::vector<Discretization> out{mesh_ladder(s).back()};
+  const long base = base_mesh(s);
+  if (base == 0) return out;
+  const long R = base * (1'000'000 / base);
+  if (R > out.back().counts[0]) out.push_back(Discretization{{static_cast<int>(R)}});
+  return out;
+}
+
 void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, const Options& options,
                                   Result& res) const {
   if (mesh.counts.size() != 1)

@@ -67,6 +67,9 @@ class DifferenceEqSolver final : public Solver {
   Discretization default_mesh(const Scene& scene) const override;
   /// R = base, 2 base, 4 base, ... from >= 4 up to <= 4096 (base puts loads and probes on nodes).
   std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
+  /// The stability sweep's largest meshes: the ladder's top and the largest multiple of the
+  /// load/probe grid not above R = 10^6 (the closed forms are O(R) in statics, O(1) per mode).
+  std::vector<Discretization> stress_meshes(const Scene& scene) const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
