@@ -58,6 +58,14 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
     sum.warnings.push_back("--mass lumped does not apply: the prisms' mass is distributed (consistent) along x");
   if (options.frf_modes > 0)
     sum.warnings.push_back("frf_modes ignored: dtfm computes every FRF sample by a direct dynamic-stiffness solve");
+  // A modelling note as well: the scene's theory names what `exact` solves; the prism model is
+  // its own model of the section, as for the 3D references.
+  if (scene.is_beam() && scene.theory == Theory::EulerBernoulli && (model.nz > 1 || model.ny > 1))
+    sum.method += fmt::format(
+        "; scene theory euler-bernoulli applies to each prism only: the {}x{} section's layers deform in shear, so the "
+        "beam as a whole carries shear deformation (like a Timoshenko or 3D model) and its higher bending modes lie "
+        "below the Euler-Bernoulli values (use --mesh 1x1 for the Euler-Bernoulli beam itself)",
+        model.ny, model.nz);
   LineAnalysis la(model);
   sum.timings_s.emplace_back("build", timer.lap());
 

@@ -267,7 +267,7 @@ BOOST_AUTO_TEST_CASE(section_refinement_toward_3d) {
     std::string row;
     for (int i = 0; i < 4; ++i) {
       e = std::max(e, rel(ml.omega_rad_s[i], ref3d[i]));
-      row += " " + std::to_string(ml.omega_rad_s[i]);
+      row.append(" ").append(std::to_string(ml.omega_rad_s[i]));
     }
     worst.push_back(e);
     BOOST_TEST_MESSAGE(mesh << ":" << row << "  max |error| vs 3D " << 100 * e << " %");
