@@ -6,7 +6,6 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <set>
 
 namespace modalbench {
 
@@ -16,19 +15,12 @@ double relative_error(double value, double reference) {
 }
 
 std::vector<int> match_modes(const std::vector<ModeFamily>& reference, const std::vector<ModeFamily>& run) {
-  // A reference with one elastic family (a bending-only beam, a plate): nothing else can be
-  // there, so a run's unknown-labelled modes belong to that family and keep their place in order.
-  std::set<ModeFamily> ref_families;
-  for (ModeFamily f : reference)
-    if (f != ModeFamily::Rigid) ref_families.insert(f);
-  const bool single = ref_families.size() == 1;
   std::map<ModeFamily, std::vector<int>> by_family;
   std::vector<int> elastic;
   bool labelled = false;
   for (int j = 0; j < static_cast<int>(run.size()); ++j) {
     if (run[j] == ModeFamily::Rigid) continue;
-    const ModeFamily f = single && run[j] == ModeFamily::Unknown ? *ref_families.begin() : run[j];
-    by_family[f].push_back(j);
+    by_family[run[j]].push_back(j);
     elastic.push_back(j);
     labelled = labelled || run[j] != ModeFamily::Unknown;
   }

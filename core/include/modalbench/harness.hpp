@@ -31,10 +31,8 @@ double relative_error(double value, double reference);
 
 /// For every reference mode, the index of the matching mode of `run` (-1: none). Modes are
 /// paired in order within each family, so a torsion mode is never paired with a bending one;
-/// rigid-body modes are never paired. Where the reference has a single elastic family, a run's
-/// `unknown` modes count as that family (nothing else can be there). Otherwise a run whose modes
-/// are all `unknown` is matched to the non-rigid reference modes by index (and the caller
-/// should say so), and a run's `unknown` modes among labelled ones are left unpaired.
+/// rigid-body modes are never paired. A run whose modes are all `unknown` is matched to the
+/// non-rigid reference modes by index (and the caller should say so).
 std::vector<int> match_modes(const std::vector<ModeFamily>& reference, const std::vector<ModeFamily>& run);
 
 /// Richardson extrapolation of f(h) = f0 + C h^p from the last three points of a
