@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <random>
 #include <stdexcept>
 
@@ -275,6 +276,11 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
     std::uniform_real_distribution<double> uni(-1.0, 1.0);
     KktLdlt sturm;
     bool sturm_analysed = false;
+    // The Sturm check's ordering and symbolic analysis need only the pattern: on a second core
+    // they overlap the Lanczos iteration (read-only access to sys on both threads).
+    std::future<void> sturm_analysis;
+    if (opt.sturm_check)
+      sturm_analysis = std::async(std::launch::async, [&sturm, &sys] { sturm.analyze(SpMat(sys.K + sys.M), sys.G); });
     long nev = kf;
     for (int attempt = 0; attempt < 3; ++attempt) {
       const long ncv = std::min<long>(n_eff, std::max<long>(2 * nev + 1, nev + 16));
@@ -306,7 +312,7 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
       const double mu = flex.lambda[kf - 1] * (1 + 1e-6) + 1e-12 * std::abs(sigma);
       const auto t0 = Clock::now();
       if (!sturm_analysed) {
-        sturm.analyze(SpMat(sys.K + sys.M), sys.G);
+        sturm_analysis.get();  // rethrows what the analysis threw
         sturm_analysed = true;
       }
       const bool fact = sturm.factorize(SpMat(sys.K - mu * sys.M));
