@@ -10,7 +10,7 @@ PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev
             libspectra-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
             libsuitesparse-dev gnuplot-nox calculix-ccx
 
-.PHONY: all deps configure build report test sanitize clean
+.PHONY: all deps configure build report test bench sanitize clean
 
 all: build
 
@@ -44,6 +44,10 @@ report: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# Every benchmark program (Release build); figures on stdout.
+bench: build
+	@set -e; for b in $(BUILD)/benchmarks/*/bench_*; do echo "=== $$b"; "$$b"; done
 
 # The address and undefined-behaviour sanitizer build, with the whole test suite.
 sanitize: deps
