@@ -4,12 +4,12 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include "modalbench/line_dsm.hpp"
+#include "modalbench/timer.hpp"
 
 namespace modalbench::exact {
 
@@ -350,16 +350,6 @@ PlateMethod plate_method(const Scene& s, std::string& why) {
   why = "exact Kirchhoff plate needs one pair of opposite edges simply supported (Levy)";
   return PlateMethod::None;
 }
-
-struct Timer {
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  double lap() {
-    auto t = std::chrono::steady_clock::now();
-    double d = std::chrono::duration<double>(t - t0).count();
-    t0 = t;
-    return d;
-  }
-};
 
 }  // namespace
 

@@ -17,21 +17,17 @@ namespace {
 inline double magnitude(double v) { return std::abs(v); }
 inline double magnitude(const std::complex<double>& v) { return std::abs(v.real()) + std::abs(v.imag()); }
 
-// exp() is accurate relative to the norm of its argument; the state matrices mix entries
-// of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
-// of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
+// Diagonal similarity by powers of two (Parlett & Reinsch), in place; returns the scaling d
+// with B_balanced = D^-1 B D, D = diag(d).
 template <class Mat>
-Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_det_tdf) {
-  const Eigen::Index n2 = A.rows();
-  if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
-  const Eigen::Index m = n2 / 2;
-  Mat B = A * h;
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(n2);
-  for (int sweep = 0; sweep < 20; ++sweep) {
+Eigen::VectorXd balance_in_place(Mat& B, int max_sweeps) {
+  const Eigen::Index n = B.rows();
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(n);
+  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     bool changed = false;
-    for (Eigen::Index i = 0; i < n2; ++i) {
+    for (Eigen::Index i = 0; i < n; ++i) {
       double c = 0, r = 0;
-      for (Eigen::Index j = 0; j < n2; ++j)
+      for (Eigen::Index j = 0; j < n; ++j)
         if (j != i) {
           c += magnitude(B(j, i));
           r += magnitude(B(i, j));
@@ -49,6 +45,19 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
     }
     if (!changed) break;
   }
+  return scale;
+}
+
+// exp() is accurate relative to the norm of its argument; the state matrices mix entries
+// of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
+// of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
+template <class Mat>
+Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_det_tdf) {
+  const Eigen::Index n2 = A.rows();
+  if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
+  const Eigen::Index m = n2 / 2;
+  Mat B = A * h;
+  const Eigen::VectorXd scale = balance_in_place(B, 20);
   const Mat T = scale.asDiagonal() * Mat(B.exp()) * scale.cwiseInverse().asDiagonal();
   const auto Tdd = T.topLeftCorner(m, m), Tdf = T.topRightCorner(m, m);
   const auto Tfd = T.bottomLeftCorner(m, m), Tff = T.bottomRightCorner(m, m);
@@ -71,6 +80,11 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
 }
 
 }  // namespace
+
+Eigen::MatrixXd balanced(Eigen::MatrixXd B, int max_sweeps) {
+  balance_in_place(B, max_sweeps);
+  return B;
+}
 
 Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry,
                                           double* log_abs_det_tdf) {

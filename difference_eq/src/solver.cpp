@@ -1,25 +1,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include "modalbench/difference_eq/difference_eq.hpp"
+#include "modalbench/timer.hpp"
 
 namespace modalbench::difference_eq {
 
 namespace {
-
-struct Timer {
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  double lap() {
-    const auto t = std::chrono::steady_clock::now();
-    const double d = std::chrono::duration<double>(t - t0).count();
-    t0 = t;
-    return d;
-  }
-};
 
 // Node tolerance: x = r L / R within 1e-9 L.
 constexpr double kNodeTol = 1e-9;

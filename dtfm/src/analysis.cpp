@@ -133,34 +133,6 @@ double fgcd(double a, double b, double tol) {
 }  // namespace
 
 namespace {
-/// Diagonal similarity by powers of two (Parlett & Reinsch): the state matrices span twenty
-/// orders of magnitude, and an unbalanced eigensolver returns wavenumbers that are not even
-/// paired (p, -p) as a Hamiltonian matrix's must be.
-Eigen::MatrixXd balanced(Eigen::MatrixXd B) {
-  const Eigen::Index n = B.rows();
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    bool changed = false;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      double c = 0, r = 0;
-      for (Eigen::Index j = 0; j < n; ++j)
-        if (j != i) {
-          c += std::abs(B(j, i));
-          r += std::abs(B(i, j));
-        }
-      if (c == 0 || r == 0) continue;
-      int e = 0;
-      std::frexp(std::sqrt(r / c), &e);
-      const double f = std::ldexp(1.0, e - 1);
-      if (f != 1.0 && (c * f + r / f) < 0.95 * (c + r)) {
-        B.col(i) *= f;
-        B.row(i) /= f;
-        changed = true;
-      }
-    }
-    if (!changed) break;
-  }
-  return B;
-}
 
 void wavenumber_bounds(const Eigen::MatrixXd& A, double& re, double& im) {
   Eigen::EigenSolver<Eigen::MatrixXd> es(balanced(A), false);

@@ -1,24 +1,12 @@
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "modalbench/dtfm/dtfm.hpp"
+#include "modalbench/timer.hpp"
 
 namespace modalbench::dtfm {
-
-namespace {
-struct Timer {
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  double lap() {
-    const auto t = std::chrono::steady_clock::now();
-    const double d = std::chrono::duration<double>(t - t0).count();
-    t0 = t;
-    return d;
-  }
-};
-}  // namespace
 
 Capability DtfmSolver::supports(const Scene&) const {
   Capability c;

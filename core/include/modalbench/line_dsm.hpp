@@ -29,6 +29,11 @@
 
 namespace modalbench {
 
+/// B balanced by a diagonal similarity of powers of two (Parlett & Reinsch): same eigenvalues,
+/// rows and columns of comparable size. State matrices span many orders of magnitude; exp()
+/// and eigensolvers lose digits (and a Hamiltonian's (p, -p) pairing) on them unbalanced.
+Eigen::MatrixXd balanced(Eigen::MatrixXd B, int max_sweeps = 50);
+
 /// Dynamic stiffness of one segment from the Hamiltonian state matrix A and length h.
 /// Returned symmetrised; `asymmetry`, if given, receives |K - K^T| / |K| before that
 /// (rounding-small exactly when A is Hamiltonian: a check on the operator's derivation).
