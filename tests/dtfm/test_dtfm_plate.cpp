@@ -99,14 +99,21 @@ BOOST_AUTO_TEST_CASE(kirchhoff_ss_and_levy) {
                                             {s.yB.translational, s.yB.rotational}, 8);
     const double e10 = max_rel(plate_modes(s, "10", 8), ex.omega_rad_s);
     const double e20 = max_rel(plate_modes(s, "20", 8), ex.omega_rad_s);
+    BOOST_TEST_CONTEXT("SS-" << e.y0 << "-SS-" << e.yB) {
+      BOOST_TEST(e20 < 0.01);
+      BOOST_TEST(e10 > e20);
+    }
+    // 40 strips (the observed order) only in optimized builds: the sanitizer build is Debug and
+    // takes over ten minutes on the four 40-strip Levy plates.
+#ifdef NDEBUG
     const double e40 = max_rel(plate_modes(s, "40", 8), ex.omega_rad_s);
     BOOST_TEST_MESSAGE("SS-" << e.y0 << "-SS-" << e.yB << ": max error 10/20/40 strips " << 100 * e10 << " / "
                              << 100 * e20 << " / " << 100 * e40 << " %");
-    BOOST_TEST_CONTEXT("SS-" << e.y0 << "-SS-" << e.yB) {
-      BOOST_TEST(e20 < 0.01);
-      BOOST_TEST(std::log2(e20 / e40) > 1.7);
-      BOOST_TEST(e10 > e20);
-    }
+    BOOST_TEST_CONTEXT("SS-" << e.y0 << "-SS-" << e.yB) { BOOST_TEST(std::log2(e20 / e40) > 1.7); }
+#else
+    BOOST_TEST_MESSAGE("SS-" << e.y0 << "-SS-" << e.yB << ": max error 10/20 strips " << 100 * e10 << " / "
+                             << 100 * e20 << " % (40 strips in optimized builds only)");
+#endif
   }
 }
 
