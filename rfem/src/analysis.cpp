@@ -241,8 +241,8 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
         ShiftInvertOp op(sys, R);
         op.set_shift(sigma);
         const long k = flex.lambda.size();
-        bool refined = true;
-        for (int step = 0; step < 2 && refined; ++step) {
+        int steps = 0;  // completed refinement steps
+        for (bool ok = true; steps < 2 && ok;) {
           const Eigen::MatrixXd MZ = sys.M * flex.Z;
           Eigen::MatrixXd W(n, k);
           Eigen::VectorXd s(k);
@@ -256,17 +256,19 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
           Eigen::MatrixXd B = W.transpose() * (sys.M * W);
           B = 0.5 * (B + B.transpose()).eval();
           Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(A, B);
-          refined = rr.info() == Eigen::Success && rr.eigenvalues().minCoeff() > 0;
-          if (refined) {
+          ok = rr.info() == Eigen::Success && rr.eigenvalues().minCoeff() > 0;
+          if (ok) {
             flex.lambda = (rr.eigenvalues().array() + sigma).matrix();
             flex.Z = W * rr.eigenvectors();
+            ++steps;
           }
         }
         out.factor_seconds += op.factor_seconds();
-        if (refined)
-          how += fmt::format("; refined by two shift-invert subspace steps on the full coordinates ({})", op.solver_name());
-        else
-          out.warnings.push_back("dense eigenpairs not refined: the Rayleigh-Ritz step failed");
+        if (steps > 0)
+          how += fmt::format("; refined by {} shift-invert subspace step(s) on the full coordinates ({})", steps,
+                             op.solver_name());
+        if (steps < 2)
+          out.warnings.push_back(fmt::format("dense eigenpairs refined by {} of 2 steps: a Rayleigh-Ritz step failed", steps));
       } catch (const std::exception& e) {
         out.warnings.push_back(fmt::format("dense eigenpairs not refined: {}", e.what()));
       }
