@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -196,6 +197,7 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   const double a = s.geometry.length, b = s.geometry.width, h = s.geometry.height;
   const Material& mat = s.material;
   const bool kirchhoff = s.theory == Theory::Kirchhoff;
+  const bool corners = kirchhoff && o.rigid_shear == RigidShear::JointCoordinates;
   const int nx = o.nx, ny = o.ny;
   const double dl = a / nx, db = b / ny;
   const double D = s.plate_D();
@@ -208,7 +210,10 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   m.loss_factor = mat.loss_factor;
   m.description = fmt::format(
       "plate: {}x{} fragments, {}x{} RFEs at the fragment corners (Table A2.1 types 1-4), {}{}", nx, ny, nx + 1,
-      ny + 1, kirchhoff ? "rigid transverse shear (Kirchhoff, exact constraints)" : "shear springs kGh (Mindlin)",
+      ny + 1,
+      !kirchhoff ? "shear springs kGh (Mindlin)"
+      : corners  ? "rigid transverse shear (Kirchhoff, exact: corner-value coordinates)"
+                 : "rigid transverse shear (Kirchhoff, exact: constraints with multipliers)",
       o.bending_correction ? ", per-fragment Poisson/twist correction" : ", Table A1.1 springs only (no Poisson coupling)");
 
   auto id = [&](int i, int j) { return j * (nx + 1) + i; };
@@ -237,7 +242,9 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   const double Js = K1 * lmin * lmin * lmin * lmax;
   const double k6 = mat.G * Js / (4 * h);
 
-  const double shear = kirchhoff ? kInf : mat.kappa * mat.G * h;
+  // Kirchhoff: rigid shear (+inf: exact constraints), or none when the corner coordinates
+  // satisfy it identically.
+  const double shear = !kirchhoff ? mat.kappa * mat.G * h : corners ? 0.0 : kInf;
   // x-direction SDEs: sides (i, j)-(i + 1, j); tributary width: both adjacent fragments' halves.
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i < nx; ++i) {
@@ -303,6 +310,56 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   edge(s.yB, true, ny);
   edge(s.x0, false, 0);
   edge(s.xL, false, nx);
+
+  if (corners) {
+    // Coordinates c_pq, p = -1..nx, q = -1..ny: values at x_p = 0, (p + 1/2) dl, a (the ends and
+    // the x-sides' midpoints of the cells) times y_q alike. Along one line of RFEs (the beam's
+    // joint coordinates): w_i = (c_{i-1} + c_i) / 2 and dw/dx_i = (c_i - c_{i-1}) / dl inside,
+    // w_0 = c_{-1} and w_n = c_n at the half-length ends (centred on the edge). A side's
+    // midpoint then moves by the same c from both RFEs, so the shear deformation vanishes.
+    struct Tap {
+      int p;
+      double value, slope;
+    };
+    auto line = [](int i, int n, double d) -> std::array<Tap, 2> {
+      if (i == 0) return {{{-1, 1.0, -2.0 / d}, {0, 0.0, 2.0 / d}}};
+      if (i == n) return {{{n - 1, 0.0, -2.0 / d}, {n, 1.0, 2.0 / d}}};
+      return {{{i - 1, 0.5, -1.0 / d}, {i, 0.5, 1.0 / d}}};
+    };
+    // The map c -> (w, theta_x, theta_y) has one null vector, (-1)^(p+q) on the inner values
+    // and 0 on the edge values (every cell sees its corners cancel): c_00 is fixed at 0.
+    const int gauge = (nx + 2) + 1;
+    auto value_index = [&](int p, int q) { return (q + 1) * (nx + 2) + (p + 1); };
+    auto column = [&](int p, int q) {
+      const int k = value_index(p, q);
+      return k < gauge ? k : k - 1;
+    };
+    auto place = [](int p, int n, double d, double length) { return p < 0 ? 0.0 : p == n ? length : (p + 0.5) * d; };
+    for (int q = -1; q <= ny; ++q)
+      for (int p = -1; p <= nx; ++p)
+        if (value_index(p, q) != gauge)
+          m.basis_names.push_back(fmt::format("c(x={:.6g}, y={:.6g})", place(p, nx, dl, a), place(q, ny, db, b)));
+    const int kw = m.local_index(dofs::Uz), kx = m.local_index(dofs::Rx), ky = m.local_index(dofs::Ry);
+    const int na = m.dofs_per_element();
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<std::size_t>(12 * (nx + 1) * (ny + 1)));
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        const long row = static_cast<long>(id(i, j)) * na;
+        for (const Tap& tx : line(i, nx, dl))
+          for (const Tap& ty : line(j, ny, db)) {
+            if (value_index(tx.p, ty.p) == gauge) continue;
+            const int c = column(tx.p, ty.p);
+            // theta_x = +dw/dy, theta_y = -dw/dx (right-handed rotations, w along +z).
+            const double w = tx.value * ty.value, rx = tx.value * ty.slope, ry = -tx.slope * ty.value;
+            if (w != 0.0) t.emplace_back(row + kw, c, w);
+            if (rx != 0.0) t.emplace_back(row + kx, c, rx);
+            if (ry != 0.0) t.emplace_back(row + ky, c, ry);
+          }
+      }
+    m.basis.resize(m.body_dofs(), (nx + 2) * (ny + 2) - 1);
+    m.basis.setFromTriplets(t.begin(), t.end());
+  }
 
   m.omega_hint = 0.3 * pi * pi * (1 / (a * a) + 1 / (b * b)) * std::sqrt(D / (mat.rho * h));
   m.check();

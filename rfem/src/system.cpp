@@ -177,10 +177,12 @@ System assemble(const Model& m) {
   const int* ti = Tr.innerIndexPtr();
   const double* tv = Tr.valuePtr();
 
-  // Pass 2: element matrices scattered straight into z (K_z = T' K T without forming K).
-  std::vector<Triplet> tk, tc, tm;
+  // Pass 2: element matrices over q, then K_z = T' K T (T has few entries per row: the product
+  // costs about nnz(K); scattering each element entry through T would cost that times the
+  // square of T's row lengths).
+  std::vector<Triplet> tk, tc;
   tk.reserve(static_cast<std::size_t>(m.sdes.size()) * 4 * na * na + m.couplings.size() * 16 * na * na);
-  auto scatter_z = [&](std::vector<Triplet>& t, const Eigen::MatrixXd& Ke, const std::vector<int>& bodies) {
+  auto scatter_q = [&](std::vector<Triplet>& t, const Eigen::MatrixXd& Ke, const std::vector<int>& bodies) {
     const int nb = static_cast<int>(bodies.size());
     for (int bi = 0; bi < nb; ++bi)
       for (int i = 0; i < na; ++i) {
@@ -188,10 +190,7 @@ System assemble(const Model& m) {
         for (int bj = 0; bj < nb; ++bj)
           for (int j = 0; j < na; ++j) {
             const double v = Ke(bi * na + i, bj * na + j);
-            if (v == 0.0) continue;
-            const long qj = static_cast<long>(bodies[static_cast<std::size_t>(bj)]) * na + j;
-            for (int p = tp[qi]; p < tp[qi + 1]; ++p)
-              for (int r = tp[qj]; r < tp[qj + 1]; ++r) t.emplace_back(ti[p], ti[r], v * tv[p] * tv[r]);
+            if (v != 0.0) t.emplace_back(qi, static_cast<long>(bodies[static_cast<std::size_t>(bj)]) * na + j, v);
           }
       }
   };
@@ -202,38 +201,39 @@ System assemble(const Model& m) {
     const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
     if (sd.b == kGround) {
       const std::vector<int> bodies = {sd.a};
-      if (stiff) scatter_z(tk, restrict_dofs(sde_to_ground(ra, sd.axes, kf), m.active), bodies);
-      if (damped) scatter_z(tc, restrict_dofs(sde_to_ground(ra, sd.axes, sd.damping), m.active), bodies);
+      if (stiff) scatter_q(tk, restrict_dofs(sde_to_ground(ra, sd.axes, kf), m.active), bodies);
+      if (damped) scatter_q(tc, restrict_dofs(sde_to_ground(ra, sd.axes, sd.damping), m.active), bodies);
     } else {
       const Eigen::Vector3d rb = sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre;
       const std::vector<int> bodies = {sd.a, sd.b};
-      if (stiff) scatter_z(tk, restrict_dofs(sde_stiffness(ra, rb, sd.axes, kf), m.active), bodies);
-      if (damped) scatter_z(tc, restrict_dofs(sde_stiffness(ra, rb, sd.axes, sd.damping), m.active), bodies);
+      if (stiff) scatter_q(tk, restrict_dofs(sde_stiffness(ra, rb, sd.axes, kf), m.active), bodies);
+      if (damped) scatter_q(tc, restrict_dofs(sde_stiffness(ra, rb, sd.axes, sd.damping), m.active), bodies);
     }
   }
   std::map<const Eigen::MatrixXd*, Eigen::MatrixXd> restricted;  // shared blocks restricted once
   for (const Coupling& cp : m.couplings) {
     auto it = restricted.find(cp.stiffness.get());
     if (it == restricted.end()) it = restricted.emplace(cp.stiffness.get(), restrict_dofs(*cp.stiffness, m.active)).first;
-    scatter_z(tk, it->second, cp.elements);
+    scatter_q(tk, it->second, cp.elements);
   }
+  Eigen::VectorXd mass(nq);
   for (std::size_t e = 0; e < m.elements.size(); ++e)
     for (int k = 0; k < na; ++k) {
       const int d = m.active[static_cast<std::size_t>(k)];
       const auto& r = m.elements[e];
-      const double mass = d < 3 ? r.mass : r.inertia[d - 3];
-      const long q = static_cast<long>(e) * na + k;
-      for (int p = tp[q]; p < tp[q + 1]; ++p)
-        for (int s = tp[q]; s < tp[q + 1]; ++s) tm.emplace_back(ti[p], ti[s], mass * tv[p] * tv[s]);
+      mass[static_cast<long>(e) * na + k] = d < 3 ? r.mass : r.inertia[d - 3];
     }
-  sys.K.resize(n, n);
-  sys.C.resize(n, n);
-  sys.M.resize(n, n);
-  sys.K.setFromTriplets(tk.begin(), tk.end());
-  sys.C.setFromTriplets(tc.begin(), tc.end());
-  sys.M.setFromTriplets(tm.begin(), tm.end());
-  sys.K.makeCompressed();
-  sys.C.makeCompressed();
+  const SpMat Tt = sys.T.transpose();
+  auto reduce = [&](const std::vector<Triplet>& t) {
+    SpMat A(nq, nq);
+    A.setFromTriplets(t.begin(), t.end());
+    SpMat Az = Tt * A * sys.T;
+    Az.makeCompressed();
+    return Az;
+  };
+  sys.K = reduce(tk);
+  sys.C = reduce(tc);
+  sys.M = Tt * mass.asDiagonal() * sys.T;
   sys.M.makeCompressed();
 
   // Rigid links between RFEs: constraint rows over z, normalised, dependent ones dropped.

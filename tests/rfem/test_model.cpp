@@ -165,10 +165,54 @@ BOOST_AUTO_TEST_CASE(euler_bernoulli_joint_coordinates_make_shear_rigid_exactly)
   BOOST_TEST(sm.m() == 2 * 9);
 }
 
+// Kirchhoff by corner coordinates: any z gives zero transverse shear at every side midpoint; the
+// map z -> q has full column rank (the one null combination is gauged out) and spans exactly the
+// space the multiplier form allows, for every kind of edge (held coordinates included).
+BOOST_AUTO_TEST_CASE(kirchhoff_corner_coordinates_make_shear_rigid_exactly) {
+  const Support c = Support::named("clamped"), p = Support::named("pinned"), f = Support::named("free"),
+                g = Support::named("guided"), e = springs(1e9, 3e5);
+  for (const auto& sup : {std::array<Support, 4>{f, f, f, f}, std::array<Support, 4>{p, p, p, p},
+                          std::array<Support, 4>{c, c, c, c}, std::array<Support, 4>{p, c, g, f},
+                          std::array<Support, 4>{e, c, f, g}}) {
+    const Scene s = plate_scene(Theory::Kirchhoff, sup[0], sup[1], sup[2], sup[3]);
+    for (auto [nx, ny] : {std::pair{6, 4}, {1, 1}, {2, 5}}) {
+      PlateOptions o;
+      o.nx = nx;
+      o.ny = ny;
+      const Model m = build_plate(s, o);
+      const System sys = assemble(m);
+      BOOST_TEST(sys.m() == 0);
+      const Eigen::MatrixXd T = dense(sys.T);
+      if (T.cols() > 0) BOOST_TEST(Eigen::FullPivLU<Eigen::MatrixXd>(T).rank() == T.cols());  // 1x1 clamped: all held
+      const Eigen::VectorXd q = T * Eigen::VectorXd::Random(T.cols());
+      const int na = m.dofs_per_element();
+      double worst = 0;
+      for (const Sde& sd : m.sdes) {
+        if (sd.b == kGround) continue;
+        Vector6d qa = Vector6d::Zero(), qb = Vector6d::Zero();
+        for (int k = 0; k < na; ++k) {
+          qa[m.active[static_cast<std::size_t>(k)]] = q[static_cast<long>(sd.a) * na + k];
+          qb[m.active[static_cast<std::size_t>(k)]] = q[static_cast<long>(sd.b) * na + k];
+        }
+        const Vector6d rel = attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre) * qb -
+                             attachment(sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre) * qa;
+        worst = std::max(worst, std::abs(rel[2]));  // w at the side midpoint
+      }
+      BOOST_TEST(worst <= 1e-13 * q.cwiseAbs().maxCoeff());
+      // The multiplier form: n - m independent motions, the same as the corner coordinates.
+      PlateOptions om = o;
+      om.rigid_shear = RigidShear::Multipliers;
+      const System sm = assemble(build_plate(s, om));
+      BOOST_TEST(sm.n() - sm.m() == sys.n());
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(kirchhoff_constraints_drop_exactly_the_dependent_rows) {
   PlateOptions o;
   o.nx = 6;
   o.ny = 4;
+  o.rigid_shear = RigidShear::Multipliers;
   const Support c = Support::named("clamped"), p = Support::named("pinned"), f = Support::named("free");
   {
     // Free plate: every rigid-shear link is independent.
@@ -194,7 +238,9 @@ BOOST_AUTO_TEST_CASE(sturm_count_equals_the_dense_count) {
   o.nx = 6;
   o.ny = 4;
   const Support p = Support::named("pinned"), c = Support::named("clamped");
-  for (Theory t : {Theory::Kirchhoff, Theory::Mindlin}) {
+  for (auto [t, shear] : {std::pair{Theory::Kirchhoff, RigidShear::Multipliers}, {Theory::Kirchhoff, RigidShear::JointCoordinates},
+                          {Theory::Mindlin, RigidShear::Multipliers}}) {
+    o.rigid_shear = shear;
     const System sys = assemble(build_plate(plate_scene(t, p, p, c, p), o));
     const Eigen::VectorXd lam = dense_eigenvalues(sys);
     KktLdlt ldlt;

@@ -23,8 +23,20 @@
 // half and quarter masses (Table A2.1); each fragment's stiffness goes into four SDEs along its
 // sides with the factor 1/2 of Table A1.1, an interior side collecting both fragments' halves.
 // Shear springs use the scene's multiplicative kappa (Table A1.1 divides by kappa = 1.2 = 1/(5/6)).
-// Kirchhoff scenes: the transverse shear springs are rigid (exact constraints, Lagrange
-// multipliers). Mindlin scenes: shear springs kappa G h, and rotary inertia m h^2 / 12 added.
+// Kirchhoff scenes: the transverse shear springs are rigid, exactly, in one of two ways:
+//  - JointCoordinates (default for plates): the coordinates are values c_pq on the grid of the
+//    plate's edges and the cells' side midpoints, the tensor product of the beam's joint
+//    coordinates: each RFE's w and slopes are the mean value and mean slopes of the bilinear
+//    field through its four c, so every side midpoint (where the SDE sits) moves by the same c
+//    from both RFEs. One combination ((-1)^(p+q) inside, 0 on the edges) moves no RFE; c at the
+//    first inner corner is fixed at 0 to remove it. About a third of the unknowns of the
+//    multiplier form and no saddle point (a positive definite pencil for CHOLMOD); the price is
+//    a fourth-difference stiffness (condition ~ n^4 against n^2): a rounding floor of order
+//    eps max(nx, ny)^4 on the frequencies (measured against the multiplier form: 1.2e-10 at
+//    40x24 and 99x59), far below the discretization error of such meshes (~1e-4 at 100).
+//  - Multipliers: the rigid shear components are constraints with Lagrange multipliers, as for
+//    the beam. Kept as the second exact method for tests.
+// Mindlin scenes: shear springs kappa G h, and rotary inertia m h^2 / 12 added.
 // Edges: free, simply supported, clamped or elastic; the support of an edge RFE is an SDE to
 // ground at its centre (on the edge) with the per-length springs times its share of the edge.
 // `bending_correction` (default on) adds, per fragment, the Poisson coupling and the Mindlin
@@ -53,6 +65,7 @@ Model build_beam(const Scene& scene, int segments, const BeamOptions& options = 
 struct PlateOptions {
   int nx = 10, ny = 6;             ///< fragments along x (length a) and y (width b), each >= 1
   bool bending_correction = true;  ///< per-fragment Poisson coupling and Mindlin twist form
+  RigidShear rigid_shear = RigidShear::JointCoordinates;  ///< Kirchhoff scenes only (corner values)
 };
 /// Plate scene -> model. Throws std::invalid_argument.
 Model build_plate(const Scene& scene, const PlateOptions& options);
