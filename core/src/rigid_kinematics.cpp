@@ -16,6 +16,22 @@ Matrix6d attachment(const Eigen::Vector3d& r) {
   return D;
 }
 
+Vector6d attached_motion(const Eigen::Vector3d& r, const Vector6d& q) {
+  Vector6d out;
+  out.head<3>() = q.head<3>() + q.tail<3>().cross(r);
+  out.tail<3>() = q.tail<3>();
+  return out;
+}
+
+Vector6d sde_deformation(const Eigen::Vector3d& r_aP, const Vector6d& q_a, const Eigen::Vector3d& r_bP,
+                         const Vector6d& q_b, const Eigen::Matrix3d& R) {
+  const Vector6d d = attached_motion(r_bP, q_b) - attached_motion(r_aP, q_a);
+  Vector6d local;
+  local.head<3>() = R.transpose() * d.head<3>();
+  local.tail<3>() = R.transpose() * d.tail<3>();
+  return local;
+}
+
 namespace {
 Matrix6d local_stiffness_global(const Eigen::Matrix3d& R, const Vector6d& k) {
   Matrix6d Rb = Matrix6d::Zero();

@@ -56,19 +56,50 @@ std::vector<long> dependent_rows(const SpMat& G) {
   return dep;
 }
 
-void KktLdlt::analyze(const SpMat& pattern, const SpMat& G) {
+namespace {
+/// For every stored entry of `super` (CSC, sorted), the index of the same entry in `sub` (whose
+/// pattern is contained in super's), or -1.
+std::vector<int> entry_map(const SpMat& super, const SpMat& sub) {
+  std::vector<int> map(static_cast<std::size_t>(super.nonZeros()), -1);
+  for (int j = 0; j < super.outerSize(); ++j) {
+    int q = sub.outerIndexPtr()[j];
+    const int qend = sub.outerIndexPtr()[j + 1];
+    for (int p = super.outerIndexPtr()[j]; p < super.outerIndexPtr()[j + 1]; ++p) {
+      while (q < qend && sub.innerIndexPtr()[q] < super.innerIndexPtr()[p]) ++q;
+      if (q < qend && sub.innerIndexPtr()[q] == super.innerIndexPtr()[p]) map[static_cast<std::size_t>(p)] = q;
+    }
+  }
+  return map;
+}
+}  // namespace
+
+void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G) {
+  SpMat compressed;
+  if (!pattern_in.isCompressed()) {
+    compressed = pattern_in;
+    compressed.makeCompressed();
+  }
+  const SpMat& pattern = pattern_in.isCompressed() ? pattern_in : compressed;
   n_ = static_cast<long>(pattern.rows());
   m_ = static_cast<long>(G.rows());
   if (pattern.cols() != n_ || (m_ > 0 && G.cols() != n_))
     throw std::invalid_argument("KktLdlt: inconsistent matrix sizes");
   G_ = G;
   G_.makeCompressed();
-  // Primal graph: A's pattern plus the couplings through the constraint rows.
-  SpMat P = pattern;
+  // Primal block: A's pattern plus the couplings through the constraint rows. Augmented
+  // Lagrangian: A + s G'G has the same solution on G x = 0 and is definite there even where A
+  // alone is not (a Kirchhoff plate's w carries no stiffness of its own).
+  SpMat P;
   if (m_ > 0) {
-    const SpMat Ga = G_.cwiseAbs();
-    P = SpMat(pattern.cwiseAbs()) + SpMat(Ga.transpose() * Ga);
+    GtG_ = SpMat(G_.transpose() * G_);
+    GtG_.makeCompressed();
+    P = pattern + GtG_;
+  } else {
+    GtG_.resize(0, 0);
+    P = pattern;
   }
+  P.makeCompressed();
+  a_nnz_ = pattern.nonZeros();
   const Eigen::VectorXi order = amd_order(P);
   std::vector<long> rank(static_cast<std::size_t>(n_));
   for (long k = 0; k < n_; ++k) rank[static_cast<std::size_t>(order[k])] = k;
@@ -91,73 +122,71 @@ void KktLdlt::analyze(const SpMat& pattern, const SpMat& G) {
     for (long r : after[static_cast<std::size_t>(k)]) pos_[n_ + r] = next++;
   }
   double mean = 0;
-  for (long i = 0; i < n_; ++i) mean += std::abs(pattern.coeff(i, i));
+  for (int j = 0; j < pattern.outerSize(); ++j)
+    for (SpMat::InnerIterator it(pattern, j); it; ++it)
+      if (it.row() == j) mean += std::abs(it.value());
   s_ = n_ > 0 && mean > 0 ? mean / static_cast<double>(n_) : 1.0;
-  // Augmented Lagrangian: A + rho G'G has the same solution on G x = 0 and is definite there
-  // even where A alone is not (a Kirchhoff plate's w carries no stiffness of its own).
-  if (m_ > 0) GtG_ = SpMat(G_.transpose() * G_);
-  SpMat Ac = augmented(pattern);
-  a_nnz_ = Ac.nonZeros();
-  // The permuted matrix with each nonzero tagged by its source (A's value index + 1, or -(G's + 1)).
-  SpMat At = Ac;
-  for (long p = 0; p < a_nnz_; ++p) At.valuePtr()[p] = static_cast<double>(p) + 1.0;
-  if (m_ == 0) {
-    Perm Pm(n_);
-    for (long i = 0; i < n_; ++i) Pm.indices()[i] = pos_[i];
-    K_ = At.selfadjointView<Eigen::Lower>().twistedBy(Pm);
-  } else {
-    std::vector<Triplet> t;
-    t.reserve(static_cast<std::size_t>(a_nnz_ + 2 * G_.nonZeros()));
-    for (int j = 0; j < At.outerSize(); ++j)
-      for (int p = At.outerIndexPtr()[j]; p < At.outerIndexPtr()[j + 1]; ++p)
-        t.emplace_back(pos_[At.innerIndexPtr()[p]], pos_[j], At.valuePtr()[p]);
-    for (int j = 0; j < G_.outerSize(); ++j)
-      for (int p = G_.outerIndexPtr()[j]; p < G_.outerIndexPtr()[j + 1]; ++p) {
-        const int r = pos_[n_ + G_.innerIndexPtr()[p]], c = pos_[j];
-        t.emplace_back(r, c, -(static_cast<double>(p) + 1.0));
-        t.emplace_back(c, r, -(static_cast<double>(p) + 1.0));
-      }
-    K_.resize(n_ + m_, n_ + m_);
-    K_.setFromTriplets(t.begin(), t.end());
-  }
+
+  // The permuted upper triangle, each entry tagged by its number; the sources per number.
+  const std::vector<int> in_a = entry_map(P, pattern);
+  const std::vector<int> in_gtg = m_ > 0 ? entry_map(P, GtG_) : std::vector<int>();
+  std::vector<Triplet> t;
+  t.reserve(static_cast<std::size_t>(P.nonZeros() / 2 + n_ + G_.nonZeros()));
+  std::vector<int> a_of, gtg_of, g_of;
+  for (int j = 0; j < P.outerSize(); ++j)
+    for (int p = P.outerIndexPtr()[j]; p < P.outerIndexPtr()[j + 1]; ++p) {
+      const int r = pos_[P.innerIndexPtr()[p]], c = pos_[j];
+      if (r > c) continue;
+      t.emplace_back(r, c, static_cast<double>(t.size()));
+      a_of.push_back(in_a[static_cast<std::size_t>(p)]);
+      gtg_of.push_back(m_ > 0 ? in_gtg[static_cast<std::size_t>(p)] : -1);
+      g_of.push_back(-1);
+    }
+  for (int j = 0; j < G_.outerSize(); ++j)
+    for (int p = G_.outerIndexPtr()[j]; p < G_.outerIndexPtr()[j + 1]; ++p) {
+      const int r = pos_[n_ + G_.innerIndexPtr()[p]], c = pos_[j];
+      t.emplace_back(std::min(r, c), std::max(r, c), static_cast<double>(t.size()));
+      a_of.push_back(-1);
+      gtg_of.push_back(-1);
+      g_of.push_back(p);
+    }
+  K_.resize(n_ + m_, n_ + m_);
+  K_.setFromTriplets(t.begin(), t.end());
   K_.makeCompressed();
-  source_.resize(static_cast<std::size_t>(K_.nonZeros()));
-  for (long p = 0; p < K_.nonZeros(); ++p) {
-    const double v = K_.valuePtr()[p];
-    source_[static_cast<std::size_t>(p)] = v > 0 ? static_cast<long>(v) - 1 : -static_cast<long>(-v);
+  const std::size_t nnz = static_cast<std::size_t>(K_.nonZeros());
+  from_a_.resize(nnz);
+  from_gtg_.resize(nnz);
+  from_g_.resize(nnz);
+  for (std::size_t p = 0; p < nnz; ++p) {
+    const auto k = static_cast<std::size_t>(K_.valuePtr()[p]);
+    from_a_[p] = a_of[k];
+    from_gtg_[p] = gtg_of[k];
+    from_g_[p] = g_of[k];
   }
   ldlt_.analyzePattern(K_);
   analysed_ = true;
-
 }
 
-SpMat KktLdlt::augmented(const SpMat& A) const {
-  SpMat Au = m_ > 0 ? SpMat(A + s_ * GtG_) : A;
-  Au.makeCompressed();
-  return Au;
-}
-
-void KktLdlt::fill(const SpMat& A) {
-  if (!(A.isCompressed() && A.nonZeros() == a_nnz_))
+bool KktLdlt::factorize(const SpMat& A_in) {
+  if (!analysed_) throw std::logic_error("KktLdlt::factorize before analyze");
+  SpMat compressed;
+  if (!A_in.isCompressed()) {
+    compressed = A_in;
+    compressed.makeCompressed();
+  }
+  const SpMat& A = A_in.isCompressed() ? A_in : compressed;
+  if (A.nonZeros() != a_nnz_ || A.rows() != n_)
     throw std::invalid_argument("KktLdlt: matrix pattern differs from the analysed one");
   const double* av = A.valuePtr();
+  const double* gtg = GtG_.valuePtr();
   const double* gv = G_.valuePtr();
-  for (std::size_t p = 0; p < source_.size(); ++p) {
-    const long s = source_[p];
-    K_.valuePtr()[p] = s >= 0 ? av[s] : s_ * gv[-s - 1];
-  }
-}
-
-bool KktLdlt::factorize(const SpMat& A) {
-  if (!analysed_) throw std::logic_error("KktLdlt::factorize before analyze");
-  if (m_ > 0) {
-    fill(augmented(A));
-  } else if (A.isCompressed()) {
-    fill(A);
-  } else {
-    SpMat Ac = A;
-    Ac.makeCompressed();
-    fill(Ac);
+  double* kv = K_.valuePtr();
+  for (std::size_t p = 0; p < from_a_.size(); ++p) {
+    double v = 0;
+    if (from_a_[p] >= 0) v += av[from_a_[p]];
+    if (from_gtg_[p] >= 0) v += s_ * gtg[from_gtg_[p]];
+    if (from_g_[p] >= 0) v += s_ * gv[from_g_[p]];
+    kv[p] = v;
   }
   diag_ = K_.diagonal();
   ldlt_.factorize(K_);

@@ -99,6 +99,14 @@ Vector6d body_vector(const Model& m, const Eigen::VectorXd& q, int e) {
 
 double tolerance_length(const Model& m) { return 1e-9 * m.length_scale; }
 
+/// Deformation of an SDE (local axes) under body motion q.
+Vector6d deformation(const Model& m, const Sde& sd, const Eigen::VectorXd& q) {
+  const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
+  if (sd.b == kGround) return sde_deformation(ra, body_vector(m, q, sd.a), ra, Vector6d::Zero(), sd.axes);
+  return sde_deformation(ra, body_vector(m, q, sd.a), sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre,
+                         body_vector(m, q, sd.b), sd.axes);
+}
+
 }  // namespace
 
 System assemble(const Model& m) {
@@ -324,11 +332,7 @@ double relative_deformation(const Model& m, const Eigen::VectorXd& q) {
   if (motion == 0) return 0;
   double worst = 0;
   for (const Sde& sd : m.sdes) {
-    const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
-    Vector6d rel = -(attachment(ra) * body_vector(m, q, sd.a));
-    if (sd.b != kGround)
-      rel += attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre) * body_vector(m, q, sd.b);
-    const Vector6d loc = block_rotation(sd.axes).transpose() * rel;
+    const Vector6d loc = deformation(m, sd, q);
     for (int c = 0; c < 6; ++c)
       if (sd.stiffness[c] != 0) worst = std::max(worst, std::abs(loc[c]) * (c < 3 ? 1.0 : L));
   }
@@ -356,7 +360,7 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
     const Vector6d e6 = Vector6d::Unit(c) * (c < 3 ? 1.0 : 1.0 / L);
     Eigen::VectorXd q(nq);
     for (std::size_t e = 0; e < m.elements.size(); ++e) {
-      const Vector6d v = attachment(m.elements[e].centre - c0) * e6;
+      const Vector6d v = attached_motion(m.elements[e].centre - c0, e6);
       for (int k = 0; k < na; ++k) q[static_cast<long>(e) * na + k] = v[m.active[static_cast<std::size_t>(k)]];
     }
     if (q.norm() > 1e-12 * std::sqrt(static_cast<double>(m.elements.size()))) {
@@ -370,35 +374,32 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
   const long nc = static_cast<long>(cand.size());
 
   // Deformation of every stiff component under each candidate: A' A accumulated directly.
-  Eigen::MatrixXd AtA = Eigen::MatrixXd::Zero(nc, nc);
+  // At most six candidates: fixed-capacity storage keeps the loop over the SDEs off the heap.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  Small AtA = Small::Zero(nc, nc);
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> def(6, nc);
   for (const Sde& sd : m.sdes) {
-    const Matrix6d Rt = block_rotation(sd.axes).transpose();
-    const Matrix6d Wa = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre);
-    Matrix6d Wb = Matrix6d::Zero();
-    if (sd.b != kGround) Wb = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre);
-    Eigen::Matrix<double, 6, Eigen::Dynamic> def(6, nc);
-    for (long j = 0; j < nc; ++j) {
-      Vector6d d6 = -Wa * body_vector(m, cand[static_cast<std::size_t>(j)], sd.a);
-      if (sd.b != kGround) d6 += Wb * body_vector(m, cand[static_cast<std::size_t>(j)], sd.b);
-      def.col(j) = d6;
-    }
+    for (long j = 0; j < nc; ++j) def.col(j) = deformation(m, sd, cand[static_cast<std::size_t>(j)]);
     for (int c = 0; c < 6; ++c) {
       if (sd.stiffness[c] == 0) continue;
-      const Eigen::RowVectorXd r = def.row(c) * (c < 3 ? 1.0 : L);
-      AtA += r.transpose() * r;
+      const Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, 6> r = def.row(c) * (c < 3 ? 1.0 : L);
+      AtA.noalias() += r.transpose() * r;
     }
   }
+  const Eigen::MatrixXd* last = nullptr;  // couplings of a regular grid share their block
+  double nk = 0;
+  Eigen::MatrixXd V, F;
   for (const Coupling& cp : m.couplings) {
-    const double nk = cp.stiffness->norm();
+    if (cp.stiffness.get() != last) last = cp.stiffness.get(), nk = last->norm();
     if (nk == 0) continue;
-    Eigen::MatrixXd V(6 * static_cast<long>(cp.elements.size()), nc);
+    V.resize(6 * static_cast<long>(cp.elements.size()), nc);
     for (long j = 0; j < nc; ++j)
       for (std::size_t i = 0; i < cp.elements.size(); ++i)
         V.block<6, 1>(6 * static_cast<long>(i), j) = body_vector(m, cand[static_cast<std::size_t>(j)], cp.elements[i]);
-    const Eigen::MatrixXd F = *cp.stiffness * V / nk * L;
-    AtA += F.transpose() * F;
+    F.noalias() = *last * V;
+    AtA.noalias() += (L / nk) * (L / nk) * (F.transpose() * F);
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(AtA);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(AtA)};
   std::vector<long> null_cols;
   for (long i = 0; i < nc; ++i)
     if (std::sqrt(std::max(0.0, es.eigenvalues()[i])) <= 1e-9) null_cols.push_back(i);

@@ -39,6 +39,11 @@ inline const std::vector<int> kSpatial = {Ux, Uy, Uz, Rx, Ry, Rz};
 Eigen::Matrix3d skew(const Eigen::Vector3d& r);
 /// D(r) = [[I, -[r]x], [0, I]]: displacement of the point at offset r from the body's reference.
 Matrix6d attachment(const Eigen::Vector3d& r);
+/// D(r) q without forming D: [u + theta x r; theta].
+Vector6d attached_motion(const Eigen::Vector3d& r, const Vector6d& q);
+/// Deformation R^T (D(r_bP) q_b - D(r_aP) q_a) of an SDE in its local axes (to ground: q_b = 0).
+Vector6d sde_deformation(const Eigen::Vector3d& r_aP, const Vector6d& q_a, const Eigen::Vector3d& r_bP,
+                         const Vector6d& q_b, const Eigen::Matrix3d& R);
 /// Stiffness (or damping) of an SDE between bodies a and b, over [q_a; q_b] (12 x 12).
 Matrix12d sde_stiffness(const Eigen::Vector3d& r_aP, const Eigen::Vector3d& r_bP, const Eigen::Matrix3d& R,
                         const Vector6d& k);

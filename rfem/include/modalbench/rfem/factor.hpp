@@ -50,16 +50,17 @@ class KktLdlt {
   long m() const { return m_; }
 
  private:
-  SpMat augmented(const SpMat& A) const;  // A + s G'G
-  void fill(const SpMat& A);               // A's (augmented) values into K_
   long n_ = 0, m_ = 0;
   double s_ = 1;                       // constraint scaling
   Eigen::VectorXi pos_;                // new position of old unknown (primal 0..n-1, multipliers n..)
   SpMat G_, GtG_;
-  SpMat K_;                            // the permuted saddle-point matrix (pattern fixed at analysis)
-  std::vector<long> source_;           // per nonzero of K_: index into A's values, or -1 - (index into G's)
+  // The permuted saddle-point matrix, upper triangle (pattern fixed at analysis; upper column-major
+  // storage is factored in place, without the copy a lower one costs on every factorization).
+  // Per nonzero: where its value comes from -- A's values, G'G's, G's (index, or -1).
+  SpMat K_;
+  std::vector<int> from_a_, from_gtg_, from_g_;
   long a_nnz_ = 0;
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::VectorXd diag_;               // permuted diagonal of the last factored matrix
   mutable Eigen::VectorXd work_;       // permuted right-hand side / solution
   bool analysed_ = false;
