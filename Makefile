@@ -8,7 +8,7 @@ REPORT_DIR ?= report
 BUDGET ?= 20
 PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev \
             libspectra-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
-            libsuitesparse-dev gnuplot-nox calculix-ccx
+            libsuitesparse-dev libopenblas0-serial gnuplot-nox calculix-ccx
 
 .PHONY: all deps configure build report test bench sanitize clean
 

@@ -56,7 +56,7 @@ class ShiftInvertOp {
     const SpMat A = sys_.K - sigma * sys_.M;
     if (sys_.m() == 0) {
       if (!pd_analysed_) {
-        pd_.analyze(pattern_);
+        pd_.analyze(pattern_, sys_.groups);
         pd_analysed_ = true;
       }
       if (!pd_.factorize(A))
@@ -66,7 +66,7 @@ class ShiftInvertOp {
             sigma));
       solver_name_ = pd_.name();
     } else {
-      kkt_.analyze(pattern_, sys_.G);
+      kkt_.analyze(pattern_, sys_.G, sys_.groups);
       if (!kkt_.factorize(A) || kkt_.negative_count() != 0)
         throw std::runtime_error(fmt::format(
             "K - sigma M is not positive definite on the constraints at sigma = {:.6g}: the stiffness matrix is indefinite",
@@ -286,7 +286,7 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
     // they overlap the Lanczos iteration (read-only access to sys on both threads).
     std::future<void> sturm_analysis;
     if (opt.sturm_check)
-      sturm_analysis = std::async(std::launch::async, [&sturm, &sys] { sturm.analyze(SpMat(sys.K + sys.M), sys.G); });
+      sturm_analysis = std::async(std::launch::async, [&sturm, &sys] { sturm.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups); });
     long nev = kf;
     for (int attempt = 0; attempt < 3; ++attempt) {
       const long ncv = std::min<long>(n_eff, std::max<long>(2 * nev + 1, nev + 16));
@@ -479,7 +479,7 @@ StaticSolution solve_static(const Model& model, const System& sys, const Eigen::
     return s;
   }
   KktLdlt ldlt;
-  ldlt.analyze(sys.K, sys.G);
+  ldlt.analyze(sys.K, sys.G, sys.groups);
   const bool fact = ldlt.factorize(sys.K);
   long where = -1;
   const double ratio = ldlt.smallest_primal_pivot_ratio(&where);
@@ -513,7 +513,7 @@ FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorX
   // Undamped: the real symmetric dynamic stiffness K - w^2 M by the saddle-point LDL' (its
   // symbolic analysis done once); a sample whose residual is poor falls back to the LU below.
   KktLdlt ldlt;
-  if (real) ldlt.analyze(SpMat(sys.K + sys.M), sys.G);
+  if (real) ldlt.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups);
   long fallbacks = 0;
   double s = 0;
   for (long i = 0; i < n; ++i) s += std::abs(sys.K.coeff(i, i));

@@ -23,16 +23,42 @@ Perm permutation_of(const Eigen::VectorXi& order) {
 }
 }  // namespace
 
-Eigen::VectorXi amd_order(const SpMat& pattern) {
+Eigen::VectorXi amd_order(const SpMat& pattern, const std::vector<int>& groups) {
   const int n = static_cast<int>(pattern.rows());
   Eigen::VectorXi order(n);
   if (n == 0) return order;
-  SpMat A = pattern;
-  A.makeCompressed();
+  if (!groups.empty() && static_cast<int>(groups.size()) != n) throw std::invalid_argument("amd_order: one group per unknown");
+  const int ng = groups.empty() ? n : *std::max_element(groups.begin(), groups.end()) + 1;
+  SpMat Q;
+  if (groups.empty()) {
+    Q = pattern;
+  } else {
+    std::vector<Triplet> t;
+    t.reserve(static_cast<std::size_t>(pattern.nonZeros()));
+    for (int j = 0; j < pattern.outerSize(); ++j)
+      for (SpMat::InnerIterator it(pattern, j); it; ++it)
+        t.emplace_back(groups[static_cast<std::size_t>(it.row())], groups[static_cast<std::size_t>(j)], 1.0);
+    Q.resize(ng, ng);
+    Q.setFromTriplets(t.begin(), t.end());
+  }
+  Q.makeCompressed();
+  Eigen::VectorXi qorder(ng);
   double control[AMD_CONTROL], info[AMD_INFO];
   amd_defaults(control);
-  const int status = ::amd_order(n, A.outerIndexPtr(), A.innerIndexPtr(), order.data(), control, info);
+  const int status = ::amd_order(ng, Q.outerIndexPtr(), Q.innerIndexPtr(), qorder.data(), control, info);
   if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED) throw std::runtime_error("AMD ordering failed");
+  if (groups.empty()) return qorder;
+  // Expand: the groups in AMD's order, each group's unknowns in their own order.
+  std::vector<int> start(static_cast<std::size_t>(ng) + 1, 0), members(static_cast<std::size_t>(n));
+  for (int g : groups) ++start[static_cast<std::size_t>(g) + 1];
+  for (int g = 0; g < ng; ++g) start[static_cast<std::size_t>(g) + 1] += start[static_cast<std::size_t>(g)];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int i = 0; i < n; ++i) members[static_cast<std::size_t>(fill[static_cast<std::size_t>(groups[static_cast<std::size_t>(i)])]++)] = i;
+  int k = 0;
+  for (int q = 0; q < ng; ++q) {
+    const auto g = static_cast<std::size_t>(qorder[q]);
+    for (int p = start[g]; p < start[g + 1]; ++p) order[k++] = members[static_cast<std::size_t>(p)];
+  }
   return order;
 }
 
@@ -73,7 +99,7 @@ std::vector<int> entry_map(const SpMat& super, const SpMat& sub) {
 }
 }  // namespace
 
-void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G) {
+void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G, const std::vector<int>& groups) {
   SpMat compressed;
   if (!pattern_in.isCompressed()) {
     compressed = pattern_in;
@@ -100,7 +126,7 @@ void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G) {
   }
   P.makeCompressed();
   a_nnz_ = pattern.nonZeros();
-  const Eigen::VectorXi order = amd_order(P);
+  const Eigen::VectorXi order = amd_order(P, groups);
   std::vector<long> rank(static_cast<std::size_t>(n_));
   for (long k = 0; k < n_; ++k) rank[static_cast<std::size_t>(order[k])] = k;
   // Each multiplier right after the last (in elimination order) primal unknown of its row.
@@ -235,6 +261,20 @@ struct PdFactor::Impl : public Eigen::CholmodDecomposition<SpMat, Eigen::Lower> 
   bool is_super() const { return this->m_cholmodFactor != nullptr && this->m_cholmodFactor->is_super; }
   cholmod_factor* factor() const { return this->m_cholmodFactor; }
   cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;  // reused by cholmod_solve2
+  /// cholmod_analyze_p in the given elimination order (Eigen's wrapper lets CHOLMOD choose).
+  void analyze_given(const SpMat& pattern, Eigen::VectorXi& order) {
+    if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &this->cholmod());
+    cholmod_sparse A = Eigen::viewAsCholmod(pattern.selfadjointView<Eigen::Lower>());
+    this->cholmod().nmethods = 1;
+    this->cholmod().method[0].ordering = CHOLMOD_GIVEN;
+    this->cholmod().postorder = 1;
+    m_cholmodFactor = cholmod_analyze_p(&A, order.data(), nullptr, 0, &this->cholmod());
+    if (!m_cholmodFactor) throw std::runtime_error("CHOLMOD analysis failed");
+    m_isInitialized = true;
+    m_info = Eigen::Success;
+    m_analysisIsOk = true;
+    m_factorizationIsOk = false;
+  }
   ~Impl() {
     for (cholmod_dense** d : {&X, &Y, &E})
       if (*d) cholmod_free_dense(d, &this->cholmod());
@@ -261,9 +301,14 @@ void PdFactor::solve_into(const double* b, double* x) const {
   std::copy_n(static_cast<const double*>(impl_->X->x), n, x);
 }
 
-void PdFactor::analyze(const SpMat& pattern) {
-  impl_->analyzePattern(pattern);
-  if (impl_->info() != Eigen::Success) throw std::runtime_error("CHOLMOD analysis failed");
+void PdFactor::analyze(const SpMat& pattern, const std::vector<int>& groups) {
+  if (groups.empty()) {
+    impl_->analyzePattern(pattern);
+    if (impl_->info() != Eigen::Success) throw std::runtime_error("CHOLMOD analysis failed");
+    return;
+  }
+  Eigen::VectorXi order = amd_order(pattern, groups);
+  impl_->analyze_given(pattern, order);
 }
 
 bool PdFactor::factorize(const SpMat& A) {

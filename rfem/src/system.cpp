@@ -180,6 +180,15 @@ System assemble(const Model& m) {
   for (std::size_t j = 0; j < free_index.size(); ++j)
     if (free_index[j] >= 0) sys.origin.push_back(static_cast<long>(j));
   const long n = sys.T.cols();
+  std::vector<int> element_group(m.elements.size(), -1);
+  int groups = 0;
+  for (long i = 0; i < n; ++i) {
+    const int first = sys.T.outerIndexPtr()[i];
+    if (first == sys.T.outerIndexPtr()[i + 1]) throw std::logic_error("rfem: a coordinate that moves nothing");
+    int& g = element_group[static_cast<std::size_t>(sys.T.innerIndexPtr()[first] / na)];
+    if (g < 0) g = groups++;
+    sys.groups.push_back(g);
+  }
   const Eigen::SparseMatrix<double, Eigen::RowMajor> Tr = sys.T;
   const int* tp = Tr.outerIndexPtr();
   const int* ti = Tr.innerIndexPtr();

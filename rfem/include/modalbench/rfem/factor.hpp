@@ -24,8 +24,11 @@
 namespace modalbench::rfem {
 
 /// Fill-reducing elimination order of a symmetric pattern (SuiteSparse AMD): order[k] is the
-/// unknown eliminated k-th.
-Eigen::VectorXi amd_order(const SpMat& pattern);
+/// unknown eliminated k-th. With `groups` (groups[i]: the group of unknown i, e.g. the rigid
+/// element it moves), AMD orders the quotient graph of the groups and each group's unknowns are
+/// eliminated together: on a plate's grid as little fill as nested dissection (1.31e6 entries in
+/// L against 1.69e6 ungrouped and 1.33e6 for METIS, Mindlin 100 x 60), at AMD's cost.
+Eigen::VectorXi amd_order(const SpMat& pattern, const std::vector<int>& groups = {});
 
 /// Indices of rows of G (unit 2-norm rows) that depend linearly on earlier rows in an AMD
 /// elimination order of G G' (pivot of the regularized Gram matrix below 1e-10, i.e. the row
@@ -34,8 +37,9 @@ std::vector<long> dependent_rows(const SpMat& G);
 
 class KktLdlt {
  public:
-  /// Orders and analyses for A's pattern (union of every A to be factored) and G.
-  void analyze(const SpMat& pattern, const SpMat& G);
+  /// Orders (amd_order with `groups`) and analyses for A's pattern (union of every A to be
+  /// factored) and G.
+  void analyze(const SpMat& pattern, const SpMat& G, const std::vector<int>& groups = {});
   /// Factors with the values of A (same pattern as analysed). False if a pivot was exactly zero.
   bool factorize(const SpMat& A);
   /// Primal part x of the KKT solve with right-hand side [b; 0] (x satisfies G x = 0).
@@ -73,7 +77,8 @@ class PdFactor {
   ~PdFactor();
   PdFactor(const PdFactor&) = delete;
   PdFactor& operator=(const PdFactor&) = delete;
-  void analyze(const SpMat& pattern);
+  /// Symbolic analysis; with `groups`, in amd_order's grouped order (else CHOLMOD chooses).
+  void analyze(const SpMat& pattern, const std::vector<int>& groups = {});
   bool factorize(const SpMat& A);  ///< false if A is not (numerically) positive definite
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// x = A^{-1} b with CHOLMOD's reusable workspace (no allocation after the first call).

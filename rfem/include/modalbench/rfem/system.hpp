@@ -25,6 +25,9 @@ struct System {
   SpMat G;        ///< independent constraint rows (unit 2-norm), m x n; m = 0 without rigid links
   SpMat T;        ///< q = T z
   std::vector<long> origin;        ///< per coordinate z: its index among the builder's coordinates
+  /// Per coordinate z: the rigid element of its first entry in T (numbered 0, 1, ... in order of
+  /// appearance). Fill-reducing orderings eliminate an element's coordinates together.
+  std::vector<int> groups;
   long held = 0;                   ///< coordinates removed by rigid supports
   long redundant = 0;              ///< rigid constraints dropped as dependent
   long n() const { return static_cast<long>(K.rows()); }
