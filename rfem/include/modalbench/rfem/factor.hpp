@@ -3,7 +3,8 @@
 //
 // KktLdlt: LDL' of the saddle-point matrix [[A + s G'G, s G'], [s G, 0]] without pivoting (the
 // augmentation s G'G changes nothing on G x = 0 but makes A definite there on its own). The
-// ordering is AMD on the pattern of A + G'G for the primal unknowns, with each multiplier placed
+// ordering is AMD on the pattern of A + G'G for the primal unknowns (grouped by rigid element:
+// amd_order), with each multiplier placed
 // right after the last primal unknown of its row: every leading block is then
 // [[A11, G1'], [G1, 0]] with A11 a principal block of A and G1 of full row rank, so the
 // factorization exists whenever A is definite on the null space of G. By Sylvester's law the
@@ -11,7 +12,8 @@
 // below sigma (the Sturm count used to prove that no mode was missed). Without constraints it
 // is a plain sparse LDL' (statics, counts).
 // PdFactor: Cholesky of a positive definite A via SuiteSparse CHOLMOD, which chooses a
-// supernodal or simplicial factor from the fill it predicts (supernodal pays on plates and 3D).
+// supernodal or simplicial factor from the fill it predicts (supernodal pays on plates and 3D),
+// in the grouped AMD order when groups are given.
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
