@@ -184,7 +184,10 @@ System assemble(const Model& m) {
   int groups = 0;
   for (long i = 0; i < n; ++i) {
     const int first = sys.T.outerIndexPtr()[i];
-    if (first == sys.T.outerIndexPtr()[i + 1]) throw std::logic_error("rfem: a coordinate that moves nothing");
+    if (first == sys.T.outerIndexPtr()[i + 1]) {  // moves no element: a group of its own
+      sys.groups.push_back(groups++);
+      continue;
+    }
     int& g = element_group[static_cast<std::size_t>(sys.T.innerIndexPtr()[first] / na)];
     if (g < 0) g = groups++;
     sys.groups.push_back(g);
