@@ -11,12 +11,12 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "modalbench/calculix.hpp"
-#include "modalbench/harness.hpp"
+#include "modalbench/harness/calculix.hpp"
+#include "modalbench/harness/comparison.hpp"
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
-#include "modalbench/report.hpp"
-#include "modalbench/stability.hpp"
+#include "modalbench/harness/report.hpp"
+#include "modalbench/harness/stability.hpp"
 
 namespace mb = modalbench;
 

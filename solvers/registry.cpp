@@ -1,6 +1,8 @@
 #include "modalbench/registry.hpp"
 
-#include "modalbench/exact.hpp"
+#ifdef MODALBENCH_HAVE_EXACT
+#include "modalbench/exact/exact.hpp"
+#endif
 #ifdef MODALBENCH_HAVE_RFEM
 #include "modalbench/rfem/rfem.hpp"
 #endif
@@ -15,7 +17,9 @@ namespace modalbench {
 
 Registry make_default_registry() {
   Registry r;
+#ifdef MODALBENCH_HAVE_EXACT
   r.add(std::make_unique<exact::ExactSolver>());
+#endif
 #ifdef MODALBENCH_HAVE_RFEM
   r.add(std::make_unique<rfem::RfemSolver>());
 #endif

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "modalbench/dtfm/dtfm.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 
 using namespace modalbench;
 using namespace modalbench::dtfm;

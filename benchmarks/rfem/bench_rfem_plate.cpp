@@ -13,7 +13,7 @@
 #include <cstdlib>
 
 #include "bench_common.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 #include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/builders.hpp"
 #include "modalbench/rfem/rfem.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "modalbench/difference_eq/difference_eq.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 #include "modalbench/scene.hpp"
 
 using namespace modalbench;

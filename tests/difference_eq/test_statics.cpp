@@ -10,7 +10,7 @@
 #include "helpers.hpp"
 #include "modalbench/difference_eq/assembled.hpp"
 #include "modalbench/difference_eq/statics.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 
 using namespace modalbench::difference_eq;
 using deq_test::quad;

@@ -12,7 +12,7 @@
 #include "modalbench/difference_eq/assembled.hpp"
 #include "modalbench/difference_eq/lasecka.hpp"
 #include "modalbench/difference_eq/vibration.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 
 using namespace modalbench::difference_eq;
 using deq_test::quad;

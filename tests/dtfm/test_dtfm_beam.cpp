@@ -15,7 +15,7 @@
 #include <string>
 
 #include "modalbench/dtfm/dtfm.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 
 namespace modalbench {
 inline std::ostream& operator<<(std::ostream& o, ModeFamily f) { return o << to_string(f); }

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "modalbench/dtfm/dtfm.hpp"
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 
 using namespace modalbench;
 using namespace modalbench::dtfm;

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "modalbench/exact.hpp"
+#include "modalbench/exact/exact.hpp"
 #include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/builders.hpp"
 #include "modalbench/rfem/system.hpp"

@@ -1,0 +1,58 @@
+#pragma once
+// Dynamic stiffness of one segment of a one-dimensional Hamiltonian field.
+//
+// A field on xi with state y = [d; f] (m displacements d, m conjugate forces f) obeys
+// y' = A(lambda) y, lambda = omega^2, where A is Hamiltonian in the sense
+//   A = [[A11, A12], [A21, -A11^T]],  A12 = A12^T,  A21 = A21^T.
+// A segment of length h has transfer matrix T = exp(A h); with T = [[Tdd, Tdf], [Tfd, Tff]]
+// its dynamic stiffness
+//   [-f(0); f(h)] = K_seg [d(0); d(h)],
+//   K_seg = [[Tdf^-1 Tdd, -Tdf^-1], [Tfd - Tff Tdf^-1 Tdd, Tff Tdf^-1]]
+// is symmetric (complex symmetric for a damped, complex A). exp(A h) is only well
+// conditioned for |p| h of order one (p the wavenumbers of A): longer segments are built by
+// doubling (long_segment_dynamic_stiffness).
+
+#include <Eigen/Dense>
+
+namespace modalbench {
+
+/// Dynamic stiffness of one segment from the Hamiltonian state matrix A and length h.
+/// Returned symmetrised; `asymmetry`, if given, receives |K - K^T| / |K| before that
+/// (rounding-small exactly when A is Hamiltonian: a check on the operator's derivation).
+/// `log_abs_det_tdf`, if given, receives log |det Tdf|: K_seg's poles are the zeros of det Tdf
+/// (the clamped segment's natural frequencies), so det K_global * prod det Tdf over the
+/// segments has no poles, only the natural frequencies as zeros (a smooth function to polish on).
+Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry = nullptr,
+                                          double* log_abs_det_tdf = nullptr);
+
+/// A long segment's dynamic stiffness by repeated doubling: a base piece of length
+/// h / 2^levels from exp(A h / 2^levels), then `levels` times two equal pieces joined by
+/// condensing their middle node (S = K22 + K11; K_2h = [[K11 - K12 S^-1 K21, -K12 S^-1 K12],
+/// [-K21 S^-1 K21, K22 - K21 S^-1 K12]]). Exact and stable where exp(A h) is not. The middle
+/// nodes' negative pivots give the Wittrick-Williams J0 of the long segment (its clamped-clamped
+/// natural frequencies below lambda; the base piece must have none: |p| h_base small), and
+/// log |det Tdf| follows from |det Tdf(2h)| = |det Tdf(h)|^2 |det S|.
+struct LongSegment {
+  Eigen::MatrixXd K;
+  int clamped_below = 0;       ///< J0 of the segment
+  double log_abs_det_tdf = 0;  ///< log |det Tdf| of the whole segment
+  double asymmetry = 0;        ///< of the base piece (see segment_dynamic_stiffness)
+  double min_pivot_rel = 1;    ///< smallest |eigenvalue| / norm of the condensed middle blocks
+};
+LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels);
+
+// ---- Complex path: damped harmonic response (structural damping, lambda = omega^2 / (1 + i eta)).
+
+/// Segment dynamic stiffness of a complex (damped) Hamiltonian state matrix: complex symmetric.
+Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry = nullptr,
+                                           double* log_abs_det_tdf = nullptr);
+
+/// Complex (damped) version of long_segment_dynamic_stiffness (no count).
+struct LongSegmentC {
+  Eigen::MatrixXcd K;
+  double asymmetry = 0;
+  double min_pivot_rel = 1;  ///< smallest reciprocal condition estimate of the middle blocks
+};
+LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels);
+
+}  // namespace modalbench

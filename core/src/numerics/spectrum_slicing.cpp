@@ -1,0 +1,186 @@
+#include "modalbench/numerics/spectrum_slicing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace modalbench {
+
+std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
+                                   double lambda_hint, double rel_tol, SliceStats* stats) {
+  std::vector<double> out;
+  if (k <= 0) return out;
+  long evals = 0;
+  auto N = [&](double lam) {
+    ++evals;
+    return count(lam);
+  };
+  const int n_lo = N(lambda_lo);
+  const int want = n_lo + k;
+  double hi = std::max(std::abs(lambda_hint), std::abs(lambda_lo));
+  if (!(hi > lambda_lo)) hi = lambda_lo + std::abs(lambda_hint);
+  int n_hi = N(hi);
+  for (int grow = 0; n_hi < want; ++grow) {
+    if (grow > 400 || !std::isfinite(hi))
+      throw std::runtime_error("spectrum slicing: could not bracket " + std::to_string(k) + " eigenvalues");
+    hi = lambda_lo + 2.0 * (hi - lambda_lo);
+    n_hi = N(hi);
+  }
+  const double abs_tol = rel_tol * 1e-8 * std::abs(lambda_hint);
+  struct Interval { double lo, hi; int n_lo, n_hi; };
+  std::vector<Interval> stack = {{lambda_lo, hi, n_lo, n_hi}};
+  std::vector<std::pair<double, int>> found;  // value, multiplicity
+  while (!stack.empty()) {
+    Interval iv = stack.back();
+    stack.pop_back();
+    if (iv.n_lo >= want || iv.n_hi == iv.n_lo) continue;
+    const double width = iv.hi - iv.lo;
+    if (width <= std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol)) {
+      found.emplace_back(0.5 * (iv.lo + iv.hi), std::min(iv.n_hi, want) - iv.n_lo);
+      continue;
+    }
+    const double mid = 0.5 * (iv.lo + iv.hi);
+    const int n_mid = N(mid);
+    if (n_mid < iv.n_lo || n_mid > iv.n_hi)
+      throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +
+                               std::to_string(mid) + ")");
+    stack.push_back({mid, iv.hi, n_mid, iv.n_hi});
+    stack.push_back({iv.lo, mid, iv.n_lo, n_mid});
+  }
+  std::sort(found.begin(), found.end());
+  for (auto& [v, mult] : found)
+    for (int j = 0; j < mult; ++j) out.push_back(v);
+  out.resize(std::min<std::size_t>(out.size(), k));
+  if (stats) stats->count_evaluations += evals;
+  return out;
+}
+
+namespace {
+
+/// Brent's method (zeroin) on g over [a, b] with g(a), g(b) of opposite signs; stops early
+/// when `stalled` becomes true (g reached its rounding floor).
+template <class G>
+double brent_root(G&& g, double a, double b, double ga, double gb, double tol, const bool& stalled) {
+  double c = a, gc = ga, d = b - a, e = d;
+  for (int iter = 0; iter < 200; ++iter) {
+    if ((gb > 0) == (gc > 0)) {
+      c = a;
+      gc = ga;
+      d = e = b - a;
+    }
+    if (std::abs(gc) < std::abs(gb)) {
+      a = b; b = c; c = a;
+      ga = gb; gb = gc; gc = ga;
+    }
+    const double tol1 = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(b) + 0.5 * tol;
+    const double xm = 0.5 * (c - b);
+    if (std::abs(xm) <= tol1 || gb == 0.0) return b;
+    if (std::abs(e) >= tol1 && std::abs(ga) > std::abs(gb)) {
+      const double s = gb / ga;
+      double p, q;
+      if (a == c) {
+        p = 2.0 * xm * s;
+        q = 1.0 - s;
+      } else {
+        const double qq = ga / gc, r = gb / gc;
+        p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
+        q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+      }
+      if (p > 0) q = -q;
+      p = std::abs(p);
+      if (2.0 * p < std::min(3.0 * xm * q - std::abs(tol1 * q), std::abs(e * q))) {
+        e = d;
+        d = p / q;
+      } else {
+        d = xm;
+        e = d;
+      }
+    } else {
+      d = xm;
+      e = d;
+    }
+    a = b;
+    ga = gb;
+    b += std::abs(d) > tol1 ? d : (xm > 0 ? tol1 : -tol1);
+    gb = g(b);
+    if (stalled) return b;
+  }
+  return b;
+}
+
+}  // namespace
+
+std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
+                                            double lambda_hi, double rel_tol, double abs_tol, SliceStats* stats) {
+  std::vector<double> out;
+  if (!(lambda_hi > lambda_lo)) return out;
+  long evals = 0;
+  auto E = [&](double lam) {
+    ++evals;
+    return eval(lam);
+  };
+  struct Interval {
+    double lo, hi;
+    CountDet a, b;
+  };
+  std::vector<Interval> stack = {{lambda_lo, lambda_hi, E(lambda_lo), E(lambda_hi)}};
+  if (stack[0].b.count < stack[0].a.count)
+    throw std::runtime_error("spectrum slicing: count decreases between lambda_lo and lambda_hi");
+  auto narrow = [&](double lo, double hi) {
+    return hi - lo <= std::max(rel_tol * std::max(std::abs(lo), std::abs(hi)), abs_tol);
+  };
+  std::vector<std::pair<double, int>> found;
+  while (!stack.empty()) {
+    Interval iv = stack.back();
+    stack.pop_back();
+    const int n = iv.b.count - iv.a.count;
+    if (n <= 0) continue;
+    if (narrow(iv.lo, iv.hi)) {
+      found.emplace_back(0.5 * (iv.lo + iv.hi), n);
+      continue;
+    }
+    if (n == 1 && std::isfinite(iv.a.log_abs_det) && std::isfinite(iv.b.log_abs_det)) {
+      // Isolated: the signed determinant changes sign exactly once in (lo, hi).
+      const int n_lo = iv.a.count;
+      const double ref = std::max(iv.a.log_abs_det, iv.b.log_abs_det);
+      auto signed_det = [&](const CountDet& cd) {
+        if (cd.count != n_lo && cd.count != n_lo + 1)
+          throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown)");
+        const double mag = std::exp(std::clamp(cd.log_abs_det - ref, -600.0, 600.0));
+        return cd.count == n_lo ? mag : -mag;
+      };
+      // Near the root the determinant reaches its rounding floor: the same value again at a
+      // different lambda means further steps only sample noise.
+      bool stalled = false;
+      std::vector<double> seen = {iv.a.log_abs_det, iv.b.log_abs_det};
+      auto g = [&](double lam) {
+        const CountDet cd = E(lam);
+        if (std::find(seen.begin(), seen.end(), cd.log_abs_det) != seen.end()) stalled = true;
+        seen.push_back(cd.log_abs_det);
+        return signed_det(cd);
+      };
+      const double tol = std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol);
+      const double root = brent_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol, stalled);
+      found.emplace_back(std::clamp(root, iv.lo, iv.hi), 1);
+      continue;
+    }
+    const double mid = 0.5 * (iv.lo + iv.hi);
+    const CountDet cm = E(mid);
+    if (cm.count < iv.a.count || cm.count > iv.b.count)
+      throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +
+                               std::to_string(mid) + ")");
+    stack.push_back({mid, iv.hi, cm, iv.b});
+    stack.push_back({iv.lo, mid, iv.a, cm});
+  }
+  std::sort(found.begin(), found.end());
+  for (auto& [v, mult] : found)
+    for (int j = 0; j < mult; ++j) out.push_back(v);
+  if (stats) stats->count_evaluations += evals;
+  return out;
+}
+
+// ---- Long segments by doubling
+}  // namespace modalbench

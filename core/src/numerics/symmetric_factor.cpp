@@ -1,0 +1,51 @@
+#include "modalbench/numerics/symmetric_factor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace modalbench {
+
+SymFactor::SymFactor(const Eigen::MatrixXd& S) {
+  if (S.rows() == 0) return;
+  ldlt.compute(S);
+  bool good = ldlt.info() == Eigen::Success;
+  if (good) {
+    const Eigen::VectorXd d = ldlt.vectorD();
+    for (Eigen::Index i = 0; i < d.size(); ++i)
+      if (!std::isfinite(d[i]) || d[i] == 0.0) good = false;
+    if (good) {
+      for (Eigen::Index i = 0; i < d.size(); ++i) tally(d[i]);
+      return;
+    }
+  }
+  use_eig = true;
+  eig.compute(S);
+  const Eigen::VectorXd ev = eig.eigenvalues();
+  const double scale = ev.cwiseAbs().maxCoeff();
+  for (Eigen::Index i = 0; i < ev.size(); ++i) {
+    if (!std::isfinite(ev[i]) || std::abs(ev[i]) <= 1e-300 + 1e-15 * scale) ++zero;
+    tally(ev[i]);
+  }
+}
+
+void SymFactor::tally(double d) {
+  if (d < 0) ++negative;
+  log_abs += std::log(std::abs(d));
+  min_abs = std::min(min_abs, std::abs(d));
+  max_abs = std::max(max_abs, std::abs(d));
+}
+
+Eigen::MatrixXd SymFactor::solve(const Eigen::MatrixXd& B) const {
+  if (B.rows() == 0) return B;
+  if (!use_eig) return ldlt.solve(B);
+  Eigen::VectorXd inv = eig.eigenvalues();
+  const double scale = inv.cwiseAbs().maxCoeff();
+  for (Eigen::Index i = 0; i < inv.size(); ++i) {
+    const double e = inv[i];
+    // A zero pivot: regularise so the elimination can go on; callers see `zero`.
+    inv[i] = std::abs(e) <= 1e-15 * scale ? 1.0 / (1e-15 * scale + 1e-300) : 1.0 / e;
+  }
+  return eig.eigenvectors() * inv.asDiagonal() * (eig.eigenvectors().transpose() * B);
+}
+
+}  // namespace modalbench

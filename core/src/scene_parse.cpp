@@ -1,0 +1,267 @@
+#include <fmt/format.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "modalbench/scene.hpp"
+#include "scene_reader.hpp"
+
+namespace modalbench {
+
+namespace {
+
+using scene_detail::check_range;
+using scene_detail::Reader;
+
+Support read_support(const Reader& r, const toml::table& supports, const std::string& key, const Scene& s) {
+  const std::string full = "supports." + key;
+  const toml::node* n = supports.get(key);
+  if (!n) r.fail(full, "missing key (each beam end x0, xL / plate edge x0, xL, y0, yB needs a support)");
+  if (auto str = n->as_string()) {
+    try {
+      return Support::named(str->get());
+    } catch (const std::invalid_argument& e) {
+      r.fail(full, e.what());
+    }
+  }
+  if (!n->is_table()) r.fail(full, "must be a support name or a table of springs");
+  const auto& t = *n->as_table();
+  Support sp;
+  sp.kind = "springs";
+  std::set<std::string> allowed = {"translational", "rotational"};
+  if (s.is_beam() && s.physics != Physics::Bending) allowed.insert("axial");
+  if (s.is_beam() && s.physics == Physics::Spatial) allowed.insert("torsional");
+  r.only_keys(t, full, allowed);
+  auto spring = [&](const std::string& k) {
+    double v = r.number(t, full, k, /*allow_inf=*/true);
+    if (v < 0) r.fail(full + "." + k, fmt::format("spring stiffness must be >= 0 (got {})", v));
+    return v;
+  };
+  sp.translational = spring("translational");
+  sp.rotational = spring("rotational");
+  if (allowed.count("axial")) sp.axial = spring("axial");
+  if (allowed.count("torsional")) sp.torsional = spring("torsional");
+  return sp;
+}
+
+std::array<double, 2> read_point(const Reader& r, const toml::node& n, const std::string& key, const Scene& s) {
+  const double L = s.geometry.length, B = s.geometry.width;
+  if (s.is_beam()) {
+    double x = r.number_node(n, key);
+    check_range(r, key, x, 0.0, L);
+    return {x, 0.0};
+  }
+  auto arr = n.as_array();
+  if (!arr || arr->size() != 2) r.fail(key, "a plate point must be an array [x, y]");
+  double x = r.number_node(*arr->get(0), key + "[0]");
+  double y = r.number_node(*arr->get(1), key + "[1]");
+  check_range(r, key + "[0]", x, 0.0, L);
+  check_range(r, key + "[1]", y, 0.0, B);
+  return {x, y};
+}
+
+/// [scene]: name, kind, physics, theory.
+void read_scene_table(const Reader& r, const toml::table& root, Scene& s) {
+  const auto& sc = r.table(root, "", "scene");
+  r.only_keys(sc, "scene", {"name", "kind", "physics", "theory", "description"});
+  s.name = r.string(sc, "scene", "name");
+  if (s.name.empty()) r.fail("scene.name", "must not be empty");
+  const std::string kind = r.string(sc, "scene", "kind");
+  if (kind == "beam") s.kind = SceneKind::Beam;
+  else if (kind == "plate") s.kind = SceneKind::Plate;
+  else r.fail("scene.kind", "unknown kind '" + kind + "' (expected beam or plate)");
+
+  const std::string physics = r.string(sc, "scene", "physics");
+  if (s.is_beam()) {
+    if (physics == "bending") s.physics = Physics::Bending;
+    else if (physics == "planar") s.physics = Physics::Planar;
+    else if (physics == "spatial") s.physics = Physics::Spatial;
+    else r.fail("scene.physics", "unknown beam physics '" + physics + "' (expected bending, planar or spatial)");
+  } else {
+    if (physics != "bending") r.fail("scene.physics", "a plate has physics 'bending' (got '" + physics + "')");
+    s.physics = Physics::Bending;
+  }
+  const std::string theory = r.string(sc, "scene", "theory");
+  if (s.is_beam()) {
+    if (theory == "euler-bernoulli") s.theory = Theory::EulerBernoulli;
+    else if (theory == "timoshenko") s.theory = Theory::Timoshenko;
+    else r.fail("scene.theory", "unknown beam theory '" + theory + "' (expected euler-bernoulli or timoshenko)");
+  } else {
+    if (theory == "kirchhoff") s.theory = Theory::Kirchhoff;
+    else if (theory == "mindlin") s.theory = Theory::Mindlin;
+    else r.fail("scene.theory", "unknown plate theory '" + theory + "' (expected kirchhoff or mindlin)");
+  }
+}
+
+/// [geometry]: length, width, height.
+void read_geometry(const Reader& r, const toml::table& root, Scene& s) {
+  const auto& g = r.table(root, "", "geometry");
+  r.only_keys(g, "geometry", {"length", "width", "height"});
+  s.geometry.length = r.positive(g, "geometry", "length");
+  s.geometry.width = r.positive(g, "geometry", "width");
+  s.geometry.height = r.positive(g, "geometry", "height");
+}
+
+/// [material]: E, G and/or nu, rho, kappa, loss_factor.
+void read_material(const Reader& r, const toml::table& root, Scene& s) {
+  const auto& m = r.table(root, "", "material");
+  r.only_keys(m, "material", {"E", "G", "nu", "rho", "kappa", "loss_factor"});
+  s.material.E = r.positive(m, "material", "E");
+  s.material.rho = r.positive(m, "material", "rho");
+  auto G = r.opt_number(m, "material", "G");
+  auto nu = r.opt_number(m, "material", "nu");
+  if (!G && !nu) r.fail("material", "give G or nu (or both, consistent)");
+  if (nu && !(*nu > -1.0 && *nu < 0.5)) r.fail("material.nu", fmt::format("must lie in (-1, 0.5) (got {})", *nu));
+  if (G && !(*G > 0)) r.fail("material.G", fmt::format("must be > 0 (got {})", *G));
+  if (G && nu) {
+    const double implied = s.material.E / (2.0 * (1.0 + *nu));
+    if (std::abs(implied - *G) > 1e-6 * *G)
+      r.fail("material.G", fmt::format("inconsistent with E and nu: E/(2(1+nu)) = {} Pa but G = {} Pa", implied, *G));
+  }
+  s.material.G = G ? *G : s.material.E / (2.0 * (1.0 + *nu));
+  s.material.nu = nu ? *nu : s.material.E / (2.0 * *G) - 1.0;
+  if (!(s.material.nu > -1.0 && s.material.nu < 0.5))
+    r.fail("material.G", fmt::format("implies nu = E/(2G) - 1 = {} outside (-1, 0.5)", s.material.nu));
+  if (auto k = r.opt_number(m, "material", "kappa")) {
+    if (!(*k > 0)) r.fail("material.kappa", fmt::format("must be > 0 (got {})", *k));
+    s.material.kappa = *k;
+  } else {
+    s.material.kappa = 5.0 / 6.0;
+    s.notes.push_back("material.kappa not given: shear coefficient 5/6");
+  }
+  if (auto eta = r.opt_number(m, "material", "loss_factor")) {
+    if (*eta < 0) r.fail("material.loss_factor", fmt::format("must be >= 0 (got {})", *eta));
+    s.material.loss_factor = *eta;
+  }
+}
+
+/// [supports]: beam ends x0, xL; plate edges x0, xL, y0, yB.
+void read_supports(const Reader& r, const toml::table& root, Scene& s) {
+  const auto& sup = r.table(root, "", "supports");
+  if (s.is_beam()) {
+    r.only_keys(sup, "supports", {"x0", "xL"});
+    s.x0 = read_support(r, sup, "x0", s);
+    s.xL = read_support(r, sup, "xL", s);
+  } else {
+    r.only_keys(sup, "supports", {"x0", "xL", "y0", "yB"});
+    s.x0 = read_support(r, sup, "x0", s);
+    s.xL = read_support(r, sup, "xL", s);
+    s.y0 = read_support(r, sup, "y0", s);
+    s.yB = read_support(r, sup, "yB", s);
+  }
+}
+
+/// [[loads]]: point loads with the components the physics carries.
+void read_loads(const Reader& r, const toml::table& root, Scene& s) {
+  if (const toml::node* ln = root.get("loads")) {
+    auto arr = ln->as_array();
+    if (!arr) r.fail("loads", "must be an array of tables ([[loads]])");
+    std::set<std::string> comps;
+    if (s.is_plate()) comps = {"Fz"};
+    else if (s.physics == Physics::Bending) comps = {"Fz", "My"};
+    else if (s.physics == Physics::Planar) comps = {"Fx", "Fz", "My"};
+    else comps = {"Fx", "Fy", "Fz", "Mx", "My", "Mz"};
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string where = fmt::format("loads[{}]", i);
+      auto t = arr->get(i)->as_table();
+      if (!t) r.fail(where, "must be a table");
+      std::set<std::string> allowed = comps;
+      allowed.insert("x");
+      if (s.is_plate()) allowed.insert("y");
+      r.only_keys(*t, where, allowed);
+      PointLoad p;
+      const toml::node* xn = t->get("x");
+      if (!xn) r.fail(where + ".x", "missing key");
+      if (s.is_beam()) {
+        p.x = read_point(r, *xn, where + ".x", s)[0];
+      } else {
+        p.x = r.number(*t, where, "x");
+        p.y = r.number(*t, where, "y");
+        check_range(r, where + ".x", p.x, 0.0, s.geometry.length);
+        check_range(r, where + ".y", p.y, 0.0, s.geometry.width);
+      }
+      auto comp = [&](const char* k) { return r.opt_number(*t, where, k).value_or(0.0); };
+      p.Fx = comp("Fx"); p.Fy = comp("Fy"); p.Fz = comp("Fz");
+      p.Mx = comp("Mx"); p.My = comp("My"); p.Mz = comp("Mz");
+      bool any = false;
+      for (auto& c : comps) any = any || t->contains(c);
+      if (!any) r.fail(where, "a load needs at least one component");
+      s.loads.push_back(p);
+    }
+  }
+}
+
+/// [request]: modes, probes, frf.
+void read_request(const Reader& r, const toml::table& root, Scene& s) {
+  if (const toml::node* rn = root.get("request")) {
+    auto t = rn->as_table();
+    if (!t) r.fail("request", "must be a table");
+    r.only_keys(*t, "request", {"modes", "probes", "frf"});
+    if (auto k = r.opt_integer(*t, "request", "modes")) {
+      if (*k < 0 || *k > 100000) r.fail("request.modes", fmt::format("must lie in [0, 100000] (got {})", *k));
+      s.request.modes = static_cast<int>(*k);
+    }
+    if (const toml::node* pn = t->get("probes")) {
+      auto arr = pn->as_array();
+      if (!arr) r.fail("request.probes", "must be an array");
+      for (std::size_t i = 0; i < arr->size(); ++i)
+        s.request.probes.push_back(read_point(r, *arr->get(i), fmt::format("request.probes[{}]", i), s));
+    }
+    if (const toml::node* fn = t->get("frf")) {
+      auto ft = fn->as_table();
+      if (!ft) r.fail("request.frf", "must be a table");
+      r.only_keys(*ft, "request.frf", {"excite", "observe", "omega_min", "omega_max", "points"});
+      FrfRequest f;
+      for (const char* k : {"excite", "observe"}) {
+        const toml::node* n = ft->get(k);
+        if (!n) r.fail(std::string("request.frf.") + k, "missing key");
+        (std::string(k) == "excite" ? f.excite : f.observe) = read_point(r, *n, std::string("request.frf.") + k, s);
+      }
+      f.omega_min = r.number(*ft, "request.frf", "omega_min");
+      f.omega_max = r.number(*ft, "request.frf", "omega_max");
+      if (f.omega_min < 0) r.fail("request.frf.omega_min", "must be >= 0 rad/s");
+      if (!(f.omega_max > f.omega_min)) r.fail("request.frf.omega_max", "must be > omega_min");
+      auto pts = r.opt_integer(*ft, "request.frf", "points");
+      if (!pts) r.fail("request.frf.points", "missing key");
+      if (*pts < 2 || *pts > 1000000) r.fail("request.frf.points", fmt::format("must lie in [2, 1000000] (got {})", *pts));
+      f.points = static_cast<int>(*pts);
+      s.request.frf = f;
+    }
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& source) {
+  Reader r(source);
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw InputError(source, fmt::format("line {}", e.source().begin.line),
+                     std::string("TOML syntax: ") + std::string(e.description()));
+  }
+  r.only_keys(root, "", {"scene", "geometry", "material", "supports", "loads", "request"});
+  Scene s;
+  s.source = source;
+  read_scene_table(r, root, s);
+  read_geometry(r, root, s);
+  read_material(r, root, s);
+  read_supports(r, root, s);
+  read_loads(r, root, s);
+  read_request(r, root, s);
+  validate(s);
+  return s;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string(), "", "cannot open file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path.string());
+}
+
+}  // namespace modalbench

@@ -1,0 +1,101 @@
+#pragma once
+// Private to the scene parser and validator: reads typed values out of toml++ nodes, naming
+// the file and the key in every complaint.
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+#include <set>
+#include <string>
+#include <toml++/toml.h>
+
+#include "modalbench/scene.hpp"
+
+namespace modalbench::scene_detail {
+
+/// Reads typed values out of toml++ nodes, naming file and key in every complaint.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
+    throw InputError(source_, key, reason);
+  }
+
+  void only_keys(const toml::table& t, const std::string& where, std::set<std::string> allowed) const {
+    for (auto&& [k, v] : t) {
+      if (!allowed.count(std::string(k.str()))) {
+        std::string list;
+        for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(join(where, std::string(k.str())), "unknown key (allowed here: " + list + ")");
+      }
+    }
+  }
+
+  static std::string join(const std::string& where, const std::string& key) {
+    return where.empty() ? key : where + "." + key;
+  }
+
+  const toml::table& table(const toml::table& t, const std::string& where, const std::string& key) const {
+    const toml::node* n = t.get(key);
+    if (!n) fail(join(where, key), "missing table");
+    if (!n->is_table()) fail(join(where, key), "must be a table");
+    return *n->as_table();
+  }
+
+  std::optional<double> opt_number(const toml::table& t, const std::string& where, const std::string& key,
+                                   bool allow_inf = false) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    return number_node(*n, join(where, key), allow_inf);
+  }
+
+  double number_node(const toml::node& n, const std::string& full, bool allow_inf = false) const {
+    double v;
+    if (auto i = n.as_integer()) v = static_cast<double>(i->get());
+    else if (auto f = n.as_floating_point()) v = f->get();
+    else fail(full, "must be a number");
+    if (std::isnan(v)) fail(full, "is NaN");
+    if (std::isinf(v) && !allow_inf) fail(full, "must be finite");
+    return v;
+  }
+
+  double number(const toml::table& t, const std::string& where, const std::string& key,
+                bool allow_inf = false) const {
+    auto v = opt_number(t, where, key, allow_inf);
+    if (!v) fail(join(where, key), "missing key");
+    return *v;
+  }
+
+  double positive(const toml::table& t, const std::string& where, const std::string& key) const {
+    double v = number(t, where, key);
+    if (!(v > 0)) fail(join(where, key), fmt::format("must be > 0 (got {})", v));
+    return v;
+  }
+
+  std::string string(const toml::table& t, const std::string& where, const std::string& key) const {
+    const toml::node* n = t.get(key);
+    if (!n) fail(join(where, key), "missing key");
+    auto s = n->as_string();
+    if (!s) fail(join(where, key), "must be a string");
+    return s->get();
+  }
+
+  std::optional<long> opt_integer(const toml::table& t, const std::string& where, const std::string& key) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    auto i = n->as_integer();
+    if (!i) fail(join(where, key), "must be an integer");
+    return i->get();
+  }
+
+ private:
+  std::string source_;
+};
+
+inline void check_range(const Reader& r, const std::string& key, double v, double lo, double hi) {
+  if (!(v >= lo && v <= hi)) r.fail(key, fmt::format("must lie in [{}, {}] (got {})", lo, hi, v));
+}
+
+}  // namespace modalbench::scene_detail

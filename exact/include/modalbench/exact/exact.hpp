@@ -1,0 +1,33 @@
+#pragma once
+// The `exact` back-end: continuum references solved without discretization error.
+// Beams and bars (beams.hpp): Timoshenko / Euler-Bernoulli bending in one or two planes,
+// axial and torsional bars, any end springs. Plates (plates.hpp): Kirchhoff Navier and Levy,
+// Mindlin simply supported. Each is selected from the scene's kind, theory and supports.
+//
+// Usage:
+//   ExactSolver exact;
+//   Result r = exact.solve(load_scene("scenes/paper_fixed_beam.toml"), {}, Options{});
+
+#include <string>
+
+#include "modalbench/exact/beams.hpp"
+#include "modalbench/exact/plates.hpp"
+#include "modalbench/solver.hpp"
+
+namespace modalbench::exact {
+
+class ExactSolver final : public Solver {
+ public:
+  std::string name() const override { return "exact"; }
+  std::string description() const override {
+    return "exact continuum references: Timoshenko/Euler-Bernoulli beams, bars, Navier/Levy/Mindlin plates";
+  }
+  Capability supports(const Scene& scene) const override;
+  Discretization default_mesh(const Scene&) const override { return {}; }
+
+ protected:
+  void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
+                Result& result) const override;
+};
+
+}  // namespace modalbench::exact

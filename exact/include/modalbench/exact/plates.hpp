@@ -1,0 +1,45 @@
+#pragma once
+// Exact plates.
+//   Kirchhoff, all edges simply supported: Navier, omega_mn = pi^2 ((m/a)^2 + (n/b)^2) sqrt(D/(rho h)).
+//   Kirchhoff, Levy: one pair of opposite edges simply supported, the others free, pinned,
+//     clamped, guided or elastic: per half-wave number m the strip equation in the other
+//     direction, by the exact dynamic stiffness and count (numerics/line_system.hpp); the
+//     counts are summed over m.
+//   Mindlin, all edges simply supported (hard): per (m, n) a 3x3 generalized eigenproblem in
+//     (w, psi_x, psi_y), all three branches, plus the pure thickness-shear modes with m = 0
+//     or n = 0; collected and sorted.
+//
+// Sources: Leissa, "Vibration of Plates" (NASA SP-160, 1969) for the Levy forms; Mindlin
+// (1951) for the thick plate.
+
+#include <array>
+#include <complex>
+#include <vector>
+
+#include "modalbench/exact/types.hpp"
+
+namespace modalbench::exact {
+
+/// Kirchhoff plate, all edges simply supported (Navier).
+std::vector<double> navier_frequencies(double a, double b, double D, double rho_h, int k);
+/// Kirchhoff plate, all edges simply supported: receptance w(xo, yo) / F(xe, ye) at omega
+/// (omega = 0: static flexibility) by the Navier double series over m, n <= `terms`, with
+/// structural damping eta (omega_mn^2 -> omega_mn^2 (1 + i eta)). The series converges like
+/// terms^-2 for the driving point; `tail` (if given) receives |S(terms) - S(terms / 2)|, a
+/// bound on the truncation error.
+std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
+                                       double xo, double yo, double omega, int terms, double* tail = nullptr);
+/// Static deflection of a simply supported Kirchhoff plate at (x, y) under point forces,
+/// with the slopes: returns {w, dw/dx, dw/dy}.
+std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
+                                    double x, double y, int terms, double* tail = nullptr);
+
+/// Mindlin plate, all edges simply supported (hard), every branch.
+std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double E, double nu, double G,
+                                           double kappa, double rho, int k);
+/// Kirchhoff plate with edges x = 0, a simply supported; `y0`, `yb` are the edges y = 0, b
+/// (springs per unit length; pinned = {inf, 0}, clamped = {inf, inf}, free = {0, 0}).
+Frequencies levy_frequencies(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb,
+                             int k);
+
+}  // namespace modalbench::exact

@@ -1,0 +1,20 @@
+#pragma once
+// Values shared by the exact beam, bar and plate references.
+
+#include <vector>
+
+namespace modalbench::exact {
+
+/// Springs at a beam end or along a plate edge (per unit length), [0, inf].
+struct EndSprings {
+  double translational = 0;  ///< N/m (plate edge: N/m^2), [0, inf]
+  double rotational = 0;     ///< N*m/rad (plate edge: N*m/(rad*m)), [0, inf]
+};
+
+struct Frequencies {
+  std::vector<double> omega_rad_s;  ///< ascending, rigid-body modes as 0
+  int rigid = 0;
+  long count_evaluations = 0;
+};
+
+}  // namespace modalbench::exact

@@ -1,0 +1,173 @@
+#include "modalbench/exact/beams.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "modalbench/numerics/line_system.hpp"
+
+namespace modalbench::exact {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Dimensionless Timoshenko line (xi = x / L, w_bar = w / L, forces scaled by EI / L^2, EI / L).
+struct BendingLine {
+  double s;       // EI / (kGA L^2)
+  double r;       // rhoI / (rhoA L^2)
+  double lam_to_Omega2;  // rhoA L^4 / EI: Omega^2 = lambda * this
+  LineSystem sys;
+
+  BendingLine(const BeamBending& b, EndSprings left, EndSprings right) {
+    if (!(b.EI > 0 && b.rhoA > 0 && b.L > 0 && b.kGA > 0 && b.rhoI >= 0))
+      throw std::invalid_argument("beam properties must be positive");
+    s = std::isinf(b.kGA) ? 0.0 : b.EI / (b.kGA * b.L * b.L);
+    r = b.rhoI / (b.rhoA * b.L * b.L);
+    lam_to_Omega2 = b.rhoA * std::pow(b.L, 4) / b.EI;
+    const double kt = std::pow(b.L, 3) / b.EI, kr = b.L / b.EI;
+    sys.m = 2;
+    sys.left_spring = {scaled(left.translational, kt), scaled(left.rotational, kr)};
+    sys.right_spring = {scaled(right.translational, kt), scaled(right.rotational, kr)};
+    const double ss = s, rr = r, c = lam_to_Omega2;
+    sys.state_matrix = [ss, rr, c](double lambda) {
+      const double O2 = lambda * c;
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4);
+      // y = [w, phi, Q, M]
+      A(0, 1) = 1.0; A(0, 2) = ss;
+      A(1, 3) = 1.0;
+      A(2, 0) = -O2;
+      A(3, 1) = -rr * O2; A(3, 2) = -1.0;
+      return A;
+    };
+    sys.max_wavenumber = [ss, rr, c](double lambda) {
+      const double O2 = std::abs(lambda) * c;
+      return std::sqrt(O2 * (ss + rr) + std::sqrt(O2));
+    };
+  }
+  static double scaled(double k, double factor) { return std::isinf(k) ? kInf : k * factor; }
+};
+
+/// Dimensionless bar (xi = x / L, q unscaled, forces scaled by S / L).
+struct BarLine {
+  double lam_to_Omega2;
+  LineSystem sys;
+  BarLine(const Bar& b, double k_left, double k_right) {
+    if (!(b.S > 0 && b.mu > 0 && b.L > 0)) throw std::invalid_argument("bar properties must be positive");
+    lam_to_Omega2 = b.mu * b.L * b.L / b.S;
+    const double f = b.L / b.S;
+    sys.m = 1;
+    sys.left_spring = {std::isinf(k_left) ? kInf : k_left * f};
+    sys.right_spring = {std::isinf(k_right) ? kInf : k_right * f};
+    const double c = lam_to_Omega2;
+    sys.state_matrix = [c](double lambda) {
+      Eigen::MatrixXd A(2, 2);
+      A << 0.0, 1.0, -lambda * c, 0.0;
+      return A;
+    };
+    sys.max_wavenumber = [c](double lambda) { return std::sqrt(std::abs(lambda) * c); };
+  }
+};
+
+Frequencies to_frequencies(const LineSpectrum& spec, const SliceStats& st) {
+  Frequencies f;
+  f.rigid = spec.rigid;
+  f.count_evaluations = st.count_evaluations;
+  for (double lam : spec.lambdas) f.omega_rad_s.push_back(std::sqrt(std::max(lam, 0.0)));
+  return f;
+}
+
+bool bending_restrained(EndSprings l, EndSprings r) {
+  const bool some_t = l.translational > 0 || r.translational > 0;
+  const bool some_r = l.rotational > 0 || r.rotational > 0;
+  return (some_t && some_r) || (l.translational > 0 && r.translational > 0);
+}
+
+}  // namespace
+
+Frequencies beam_bending_frequencies(const BeamBending& beam, EndSprings left, EndSprings right, int k) {
+  BendingLine line(beam, left, right);
+  SliceStats st;
+  // Scale: Omega = 1.
+  const auto spec = lowest_eigenvalues(line.sys, k, 1.0 / line.lam_to_Omega2, &st);
+  return to_frequencies(spec, st);
+}
+
+Frequencies bar_frequencies(const Bar& bar, double k_left, double k_right, int k) {
+  BarLine line(bar, k_left, k_right);
+  SliceStats st;
+  const auto spec = lowest_eigenvalues(line.sys, k, 1.0 / line.lam_to_Omega2, &st);
+  return to_frequencies(spec, st);
+}
+
+std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings left, EndSprings right,
+                                         const std::vector<LineLoad>& loads, const std::vector<double>& probes,
+                                         double moment_sign) {
+  if (!bending_restrained(left, right))
+    throw std::runtime_error(
+        "mechanism: the end supports do not restrain rigid translation and rotation in bending "
+        "(need translational springs at both ends, or a translational and a rotational one)");
+  BendingLine line(beam, left, right);
+  const double L = beam.L;
+  for (auto& p : loads) line.sys.nodes_at.push_back(p.x / L);
+  for (double x : probes) line.sys.nodes_at.push_back(x / L);
+  AssembledLine asmb = assemble(line.sys, 0.0);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
+  for (auto& p : loads) {
+    const int n = asmb.node_at(p.x / L);
+    f[2 * n] += p.force * L * L / beam.EI;
+    f[2 * n + 1] += moment_sign * p.moment * L / beam.EI;
+  }
+  const Eigen::VectorXd d = asmb.K.solve(f);
+  std::vector<BendingResponse> out;
+  for (double x : probes) {
+    const int n = asmb.node_at(x / L);
+    out.push_back({d[2 * n] * L, moment_sign * d[2 * n + 1]});
+  }
+  return out;
+}
+
+std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
+                               const std::vector<double>& probes) {
+  if (!(k_left > 0 || k_right > 0))
+    throw std::runtime_error("mechanism: neither end restrains the bar (axial or torsional rigid motion)");
+  BarLine line(bar, k_left, k_right);
+  for (auto& p : loads) line.sys.nodes_at.push_back(p.x / bar.L);
+  for (double x : probes) line.sys.nodes_at.push_back(x / bar.L);
+  AssembledLine asmb = assemble(line.sys, 0.0);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes());
+  for (auto& p : loads) f[asmb.node_at(p.x / bar.L)] += p.force * bar.L / bar.S;
+  const Eigen::VectorXd d = asmb.K.solve(f);
+  std::vector<double> out;
+  for (double x : probes) out.push_back(d[asmb.node_at(x / bar.L)]);
+  return out;
+}
+
+double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
+                       double omega) {
+  BendingLine line(beam, left, right);
+  line.sys.nodes_at = {excite / beam.L, observe / beam.L};
+  AssembledLine asmb = assemble(line.sys, omega * omega);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
+  f[2 * asmb.node_at(excite / beam.L)] = beam.L * beam.L / beam.EI;
+  const Eigen::VectorXd d = asmb.K.solve(f);
+  return d[2 * asmb.node_at(observe / beam.L)] * beam.L;
+}
+
+BeamBending bending_xz(const Scene& s) {
+  const Section sec = s.section();
+  const auto& m = s.material;
+  const bool eb = s.theory == Theory::EulerBernoulli;
+  return {m.E * sec.Iy, eb ? kInf : m.kappa * m.G * sec.A, m.rho * sec.A, eb ? 0.0 : m.rho * sec.Iy, s.geometry.length};
+}
+
+BeamBending bending_xy(const Scene& s) {
+  const Section sec = s.section();
+  const auto& m = s.material;
+  const bool eb = s.theory == Theory::EulerBernoulli;
+  return {m.E * sec.Iz, eb ? kInf : m.kappa * m.G * sec.A, m.rho * sec.A, eb ? 0.0 : m.rho * sec.Iz, s.geometry.length};
+}
+
+}  // namespace modalbench::exact

@@ -1,0 +1,277 @@
+#include "modalbench/exact/exact.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "modalbench/timer.hpp"
+
+namespace modalbench::exact {
+
+namespace {
+
+bool simply_supported(const Support& e) { return std::isinf(e.translational) && e.rotational == 0.0; }
+EndSprings bend(const Support& s) { return {s.translational, s.rotational}; }
+
+enum class PlateMethod { None, Navier, Levy, LevyTransposed, Mindlin };
+PlateMethod plate_method(const Scene& s, std::string& why) {
+  const bool ssx = simply_supported(s.x0) && simply_supported(s.xL);
+  const bool ssy = simply_supported(s.y0) && simply_supported(s.yB);
+  if (s.theory == Theory::Mindlin) {
+    if (ssx && ssy) return PlateMethod::Mindlin;
+    why = "exact Mindlin plate only for all edges simply supported";
+    return PlateMethod::None;
+  }
+  if (ssx && ssy) return PlateMethod::Navier;
+  if (ssx) return PlateMethod::Levy;
+  if (ssy) return PlateMethod::LevyTransposed;
+  why = "exact Kirchhoff plate needs one pair of opposite edges simply supported (Levy)";
+  return PlateMethod::None;
+}
+
+/// Modes collected from several families, sorted at the end.
+struct ModeList {
+  std::vector<std::pair<double, ModeFamily>> modes;
+  void add(const std::vector<double>& w, int rigid, ModeFamily fam) {
+    for (std::size_t i = 0; i < w.size(); ++i)
+      modes.emplace_back(w[i], static_cast<int>(i) < rigid ? ModeFamily::Rigid : fam);
+  }
+  void add(const Frequencies& f, ModeFamily fam) { add(f.omega_rad_s, f.rigid, fam); }
+};
+
+Bar axial_bar(const Scene& s) {
+  const Section sec = s.section();
+  return {s.material.E * sec.A, s.material.rho * sec.A, s.geometry.length};
+}
+Bar torsion_bar(const Scene& s) {
+  const Section sec = s.section();
+  return {s.material.G * sec.J, s.material.rho * sec.Ip, s.geometry.length};
+}
+
+void beam_modes(const Scene& s, ModeList& list, Result& r) {
+  const int k = s.request.modes;
+  auto fxz = beam_bending_frequencies(bending_xz(s), bend(s.x0), bend(s.xL), k);
+  list.add(fxz, ModeFamily::BendingXZ);
+  r.summary.iterations += fxz.count_evaluations;
+  if (s.physics != Physics::Bending) {
+    auto fa = bar_frequencies(axial_bar(s), s.x0.axial, s.xL.axial, k);
+    list.add(fa, ModeFamily::Axial);
+    r.summary.iterations += fa.count_evaluations;
+  }
+  if (s.physics == Physics::Spatial) {
+    auto fxy = beam_bending_frequencies(bending_xy(s), bend(s.x0), bend(s.xL), k);
+    list.add(fxy, ModeFamily::BendingXY);
+    auto ft = bar_frequencies(torsion_bar(s), s.x0.torsional, s.xL.torsional, k);
+    list.add(ft, ModeFamily::Torsion);
+    r.summary.iterations += fxy.count_evaluations + ft.count_evaluations;
+  }
+}
+
+void beam_statics(const Scene& s, Result& r) {
+  std::vector<double> xs;
+  for (auto& p : s.request.probes) xs.push_back(p[0]);
+  std::vector<Deflection> defl(xs.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) defl[i].position = {xs[i], 0.0};
+  try {
+    std::vector<LineLoad> lz, la, ly, lt;
+    for (auto& p : s.loads) {
+      lz.push_back({p.x, p.Fz, p.My});
+      la.push_back({p.x, p.Fx, 0});
+      ly.push_back({p.x, p.Fy, p.Mz});
+      lt.push_back({p.x, p.Mx, 0});
+    }
+    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      defl[i].w = wz[i].w;
+      defl[i].theta_y = wz[i].theta;
+    }
+    if (s.physics != Physics::Bending) {
+      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs);
+      for (std::size_t i = 0; i < xs.size(); ++i) defl[i].u = u[i];
+    }
+    if (s.physics == Physics::Spatial) {
+      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0);
+      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs);
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        defl[i].v = wy[i].w;
+        defl[i].theta_z = wy[i].theta;
+        defl[i].theta_x = t[i];
+      }
+    }
+    r.deflections = defl;
+  } catch (const std::runtime_error& e) {
+    r.summary.status = Status::InvalidInput;
+    r.summary.message = s.source + ": supports: static solve impossible: " + e.what();
+  }
+}
+
+void beam_frf(const Scene& s, Result& r) {
+  const auto& f = *s.request.frf;
+  if (s.material.loss_factor > 0)
+    r.summary.warnings.push_back("exact FRF is undamped: material.loss_factor is not applied");
+  const BeamBending b = bending_xz(s);
+  int skipped = 0;
+  for (int i = 0; i < f.points; ++i) {
+    const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
+    try {
+      r.frf.push_back({w, beam_receptance(b, bend(s.x0), bend(s.xL), f.excite[0], f.observe[0], w)});
+    } catch (const std::runtime_error&) {
+      ++skipped;  // omega sits on a natural frequency (or 0 for a mechanism): no finite receptance
+    }
+  }
+  if (skipped) r.summary.warnings.push_back(fmt::format("FRF: {} sample(s) on a natural frequency omitted", skipped));
+}
+
+void solve_beam(const Scene& s, ModeList& list, Result& r, Timer& timer) {
+  r.summary.method = fmt::format("exact {} beam: dynamic stiffness + Wittrick-Williams count", to_string(s.theory));
+  if (s.request.modes > 0) {
+    beam_modes(s, list, r);
+    r.summary.timings_s.emplace_back("frequencies", timer.lap());
+  }
+  if (!s.request.probes.empty()) {
+    beam_statics(s, r);
+    r.summary.timings_s.emplace_back("statics", timer.lap());
+  }
+  if (s.request.frf) {
+    beam_frf(s, r);
+    r.summary.timings_s.emplace_back("frf", timer.lap());
+  }
+}
+
+void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
+  const int k = s.request.modes;
+  const double a = s.geometry.length, b = s.geometry.width, h = s.geometry.height;
+  const auto& m = s.material;
+  const double D = s.plate_D(), rho_h = m.rho * h;
+  switch (pm) {
+    case PlateMethod::Navier:
+      r.summary.method = "exact Kirchhoff plate, Navier (all edges simply supported)";
+      list.add(navier_frequencies(a, b, D, rho_h, k), 0, ModeFamily::Plate);
+      break;
+    case PlateMethod::Mindlin:
+      r.summary.method = "exact Mindlin plate (all edges simply supported), every branch";
+      list.add(mindlin_ss_frequencies(a, b, h, m.E, m.nu, m.G, m.kappa, m.rho, k), 0, ModeFamily::Plate);
+      break;
+    case PlateMethod::Levy: {
+      r.summary.method = "exact Kirchhoff plate, Levy (x-edges simply supported): dynamic stiffness + count";
+      auto f = levy_frequencies(a, b, D, m.nu, rho_h, bend(s.y0), bend(s.yB), k);
+      list.add(f.omega_rad_s, 0, ModeFamily::Plate);
+      r.summary.iterations = f.count_evaluations;
+      break;
+    }
+    case PlateMethod::LevyTransposed: {
+      r.summary.method = "exact Kirchhoff plate, Levy (y-edges simply supported): dynamic stiffness + count";
+      auto f = levy_frequencies(b, a, D, m.nu, rho_h, bend(s.x0), bend(s.xL), k);
+      list.add(f.omega_rad_s, 0, ModeFamily::Plate);
+      r.summary.iterations = f.count_evaluations;
+      break;
+    }
+    case PlateMethod::None: break;
+  }
+}
+
+// Truncations: statics to m, n <= 2000, FRF to m, n <= 300; the tail estimates are checked
+// (FRF: against the static flexibility of the same pair, since |H| vanishes at anti-resonances).
+void navier_statics(const Scene& s, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
+  std::vector<std::array<double, 3>> forces;
+  for (const auto& p : s.loads) forces.push_back({p.x, p.y, p.Fz});
+  double scale = 0, worst_tail = 0;
+  for (const auto& p : s.request.probes) {
+    double tail = 0;
+    const auto w = navier_static(a, b, D, forces, p[0], p[1], 2000, &tail);
+    Deflection d;
+    d.position = p;
+    d.w = w[0];
+    d.theta_x = w[2];   // rotation about x: +dw/dy
+    d.theta_y = -w[1];  // rotation about y: -dw/dx
+    r.deflections.push_back(d);
+    worst_tail = std::max(worst_tail, tail);
+    scale = std::max(scale, std::abs(w[0]));
+  }
+  if (scale > 0 && worst_tail > 1e-5 * scale)
+    r.summary.warnings.push_back(fmt::format(
+        "Navier static series truncated at 2000 x 2000 terms: estimated relative error {:.1e}", worst_tail / scale));
+  r.summary.max_residual = std::max(r.summary.max_residual, scale > 0 ? worst_tail / scale : 0.0);
+}
+
+void navier_frf(const Scene& s, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
+  const double rho_h = s.material.rho * s.geometry.height;
+  const auto& f = *s.request.frf;
+  double worst = 0;
+  const double flex = std::abs(
+      navier_receptance(a, b, D, rho_h, 0.0, f.excite[0], f.excite[1], f.observe[0], f.observe[1], 0.0, 300));
+  for (int i = 0; i < f.points; ++i) {
+    const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
+    double tail = 0;
+    const auto rec = navier_receptance(a, b, D, rho_h, s.material.loss_factor, f.excite[0], f.excite[1],
+                                       f.observe[0], f.observe[1], w, 300, &tail);
+    if (!std::isfinite(std::abs(rec))) continue;  // exactly on an undamped resonance
+    r.frf.push_back({w, rec});
+    worst = std::max(worst, tail);
+  }
+  if (flex > 0 && worst > 1e-3 * flex)
+    r.summary.warnings.push_back(fmt::format(
+        "Navier FRF series truncated at 300 x 300 terms: estimated error up to {:.1e} of the static flexibility",
+        worst / flex));
+}
+
+void solve_plate(const Scene& s, ModeList& list, Result& r, Timer& timer) {
+  std::string why;
+  const PlateMethod pm = plate_method(s, why);
+  if (s.request.modes > 0) {
+    if (pm == PlateMethod::None) throw std::runtime_error(why);
+    plate_modes(s, pm, list, r);
+    r.summary.timings_s.emplace_back("frequencies", timer.lap());
+  }
+  if (pm != PlateMethod::Navier) return;
+  if (!s.request.probes.empty()) {
+    navier_statics(s, r);
+    r.summary.timings_s.emplace_back("statics", timer.lap());
+  }
+  if (s.request.frf) {
+    navier_frf(s, r);
+    r.summary.timings_s.emplace_back("frf", timer.lap());
+  }
+}
+
+}  // namespace
+
+Capability ExactSolver::supports(const Scene& s) const {
+  Capability c;
+  if (s.is_beam()) {
+    c.modes = c.statics = c.frf = true;
+    return c;
+  }
+  std::string why;
+  const PlateMethod pm = plate_method(s, why);
+  c.modes = pm != PlateMethod::None;
+  c.statics = c.frf = pm == PlateMethod::Navier;
+  if (!c.statics)
+    c.reason = (why.empty() ? "" : why + "; ") +
+               "exact plate statics and FRF only for a simply supported Kirchhoff plate (Navier)";
+  return c;
+}
+
+void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Options&, Result& r) const {
+  if (!mesh.counts.empty())
+    throw InputError("command line", "--mesh", "the exact back-end has no mesh (got '" + mesh.spec() + "')");
+  Timer timer;
+  r.summary.dofs = 0;
+  ModeList list;
+  if (s.is_beam()) solve_beam(s, list, r, timer);
+  else solve_plate(s, list, r, timer);
+  auto& modes = list.modes;
+  std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.first < y.first; });
+  if (static_cast<int>(modes.size()) > s.request.modes) modes.resize(s.request.modes);
+  for (auto& [w, fam] : modes) {
+    r.frequencies_rad_s.push_back(w);
+    r.mode_families.push_back(fam);
+  }
+}
+
+}  // namespace modalbench::exact

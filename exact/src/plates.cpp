@@ -1,0 +1,175 @@
+#include "modalbench/exact/plates.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "modalbench/numerics/line_system.hpp"
+
+namespace modalbench::exact {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double pi = std::numbers::pi;
+}  // namespace
+
+std::vector<double> navier_frequencies(double a, double b, double D, double rho_h, int k) {
+  std::vector<double> out;
+  if (k <= 0) return out;
+  const double c = pi * pi * std::sqrt(D / rho_h);
+  auto omega = [&](int m, int n) { return c * (std::pow(m / a, 2) + std::pow(n / b, 2)); };
+  // The k lowest have m, n <= k (omega grows in each index).
+  for (int m = 1; m <= k; ++m)
+    for (int n = 1; n <= k; ++n) out.push_back(omega(m, n));
+  std::sort(out.begin(), out.end());
+  out.resize(k);
+  return out;
+}
+
+std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
+                                       double xo, double yo, double omega, int terms, double* tail) {
+  // w = sum phi_mn(xe, ye) phi_mn(xo, yo) / (M (omega_mn^2 (1 + i eta) - omega^2)),
+  // phi_mn = sin(m pi x / a) sin(n pi y / b), modal mass M = rho h a b / 4.
+  std::vector<double> sxe(terms + 1), sxo(terms + 1), sye(terms + 1), syo(terms + 1);
+  for (int m = 1; m <= terms; ++m) {
+    sxe[m] = std::sin(m * pi * xe / a);
+    sxo[m] = std::sin(m * pi * xo / a);
+    sye[m] = std::sin(m * pi * ye / b);
+    syo[m] = std::sin(m * pi * yo / b);
+  }
+  const double M = rho_h * a * b / 4.0, c = pi * pi * pi * pi * D / rho_h;
+  std::complex<double> sum = 0, half = 0;
+  for (int m = 1; m <= terms; ++m)
+    for (int n = 1; n <= terms; ++n) {
+      const double q = std::pow(m / a, 2) + std::pow(n / b, 2);
+      const double w2 = c * q * q;
+      const std::complex<double> term = sxe[m] * sye[n] * sxo[m] * syo[n] / (M * (w2 * std::complex<double>(1, eta) - omega * omega));
+      sum += term;
+      if (2 * m <= terms && 2 * n <= terms) half += term;
+    }
+  if (tail) *tail = std::abs(sum - half);
+  return sum;
+}
+
+std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
+                                    double x, double y, int terms, double* tail) {
+  // w = sum_mn W_mn sin(m pi x/a) sin(n pi y/b), W_mn = 4 F sin sin / (a b D pi^4 q^2).
+  std::array<double, 3> out{0, 0, 0}, half{0, 0, 0};
+  std::vector<double> sx(terms + 1), cx(terms + 1), sy(terms + 1), cy(terms + 1);
+  for (int m = 1; m <= terms; ++m) {
+    sx[m] = std::sin(m * pi * x / a);
+    cx[m] = std::cos(m * pi * x / a);
+    sy[m] = std::sin(m * pi * y / b);
+    cy[m] = std::cos(m * pi * y / b);
+  }
+  for (const auto& f : forces) {
+    std::vector<double> sfx(terms + 1), sfy(terms + 1);
+    for (int m = 1; m <= terms; ++m) {
+      sfx[m] = std::sin(m * pi * f[0] / a);
+      sfy[m] = std::sin(m * pi * f[1] / b);
+    }
+    for (int m = 1; m <= terms; ++m)
+      for (int n = 1; n <= terms; ++n) {
+        const double q = std::pow(m / a, 2) + std::pow(n / b, 2);
+        const double W = 4.0 * f[2] * sfx[m] * sfy[n] / (a * b * D * std::pow(pi, 4) * q * q);
+        const std::array<double, 3> t = {W * sx[m] * sy[n], W * (m * pi / a) * cx[m] * sy[n], W * (n * pi / b) * sx[m] * cy[n]};
+        for (int k = 0; k < 3; ++k) {
+          out[k] += t[k];
+          if (2 * m <= terms && 2 * n <= terms) half[k] += t[k];
+        }
+      }
+  }
+  if (tail) *tail = std::abs(out[0] - half[0]);
+  return out;
+}
+
+std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double E, double nu, double G, double kappa,
+                                           double rho, int k) {
+  std::vector<double> out;
+  if (k <= 0) return out;
+  const double D = E * h * h * h / (12.0 * (1.0 - nu * nu));
+  const double kGh = kappa * G * h, J = rho * h * h * h / 12.0;
+  auto branches = [&](int m, int n, std::vector<double>& sink) {
+    const double al = m * pi / a, be = n * pi / b;
+    if (m == 0 && n == 0) return;
+    if (m == 0 || n == 0) {
+      // Pure thickness-shear: w = 0, only the rotation along the non-zero wave survives.
+      const double q = (m == 0) ? be : al;
+      sink.push_back(std::sqrt((D * (1.0 - nu) / 2.0 * q * q + kGh) / J));
+      return;
+    }
+    Eigen::Matrix3d K, M = Eigen::Matrix3d::Zero();
+    K << kGh * (al * al + be * be), kGh * al, kGh * be,
+        kGh * al, D * (al * al + (1 - nu) / 2 * be * be) + kGh, D * (1 + nu) / 2 * al * be,
+        kGh * be, D * (1 + nu) / 2 * al * be, D * (be * be + (1 - nu) / 2 * al * al) + kGh;
+    M(0, 0) = rho * h;
+    M(1, 1) = M(2, 2) = J;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(K, M);
+    if (es.info() != Eigen::Success) throw std::runtime_error("Mindlin 3x3 eigenproblem failed");
+    for (int i = 0; i < 3; ++i) sink.push_back(std::sqrt(std::max(es.eigenvalues()[i], 0.0)));
+  };
+  // Enumerate a box of (m, n); confirm that every mode on the box's outer rim lies above the
+  // k-th frequency found (all branches grow with m and n), else enlarge the box.
+  for (int N = k + 2;; N *= 2) {
+    std::vector<double> inside, rim;
+    for (int m = 0; m <= N; ++m)
+      for (int n = 0; n <= N; ++n) branches(m, n, (m == N || n == N) ? rim : inside);
+    std::sort(inside.begin(), inside.end());
+    if (static_cast<int>(inside.size()) >= k && *std::min_element(rim.begin(), rim.end()) > inside[k - 1]) {
+      inside.resize(k);
+      return inside;
+    }
+    if (N > 100000) throw std::runtime_error("Mindlin enumeration did not close");
+  }
+}
+
+Frequencies levy_frequencies(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb,
+                             int k) {
+  Frequencies result;
+  if (k <= 0) return result;
+  // Strip m: w = W(y) sin(m pi x / a). Dimensionless y_bar = y / b, W_bar = W / b,
+  // lambda_bar = rho h omega^2 b^4 / D, k_bar = m pi b / a. State [W, W', F_w, F_theta] with
+  // F_theta = W'' - nu k^2 W (= -M_y b / D) and F_w = -W''' + (2 - nu) k^2 W' (= V_y b^2 / D).
+  const double lam_to_bar = rho_h * std::pow(b, 4) / D;
+  auto strip = [&](int m) {
+    const double kb = m * pi * b / a, k2 = kb * kb;
+    LineSystem sys;
+    sys.m = 2;
+    auto sc = [](double v, double f) { return std::isinf(v) ? kInf : v * f; };
+    sys.left_spring = {sc(y0.translational, std::pow(b, 3) / D), sc(y0.rotational, b / D)};
+    sys.right_spring = {sc(yb.translational, std::pow(b, 3) / D), sc(yb.rotational, b / D)};
+    sys.state_matrix = [k2, nu, lam_to_bar](double lambda) {
+      const double lb = lambda * lam_to_bar;
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4);
+      A(0, 1) = 1.0;
+      A(1, 0) = nu * k2; A(1, 3) = 1.0;
+      A(2, 0) = k2 * k2 * (1 - nu * nu) - lb; A(2, 3) = -nu * k2;
+      A(3, 1) = 2.0 * (1 - nu) * k2; A(3, 2) = -1.0;
+      return A;
+    };
+    sys.max_wavenumber = [k2, lam_to_bar](double lambda) {
+      return std::sqrt(k2 + std::sqrt(std::abs(lambda) * lam_to_bar)) + 1.0;
+    };
+    return sys;
+  };
+  // Strips whose (1 - nu^2) D k^4 exceeds rho h omega^2 have no mode below omega.
+  auto count = [&](double lambda) {
+    int total = 0;
+    for (int m = 1;; ++m) {
+      const double km = m * pi / a;
+      if ((1 - nu * nu) * D * std::pow(km, 4) >= rho_h * lambda) break;
+      total += count_below(strip(m), lambda);
+    }
+    return total;
+  };
+  SliceStats st;
+  const double hint = D / (rho_h * std::pow(std::min(a, b), 4));
+  for (double lam : slice_spectrum(count, k, 0.0, hint, 1e-13, &st)) result.omega_rad_s.push_back(std::sqrt(lam));
+  result.count_evaluations = st.count_evaluations;
+  return result;
+}
+
+}  // namespace modalbench::exact

@@ -1,0 +1,38 @@
+#pragma once
+// An optional 3D reference: the scene's solid meshed with 20-node hexahedra with reduced
+// integration (C3D20R, what ERRATA 8 found the prism paper's ANSYS columns to be), solved by
+// CalculiX (`ccx`, Debian package calculix-ccx) for its lowest frequencies. Mode families are
+// read from the mode shapes (section-mean translations and twist per x-slice for beams;
+// mid-plane w against in-plane motion for plates), so 3D axial, torsion and other-plane
+// modes are never compared with bending ones.
+//
+// Supports: beam ends clamped (all translations of the end face) or free; plate edges
+// simply supported (w = 0 on the mid-thickness edge line, as the paper's FEM did), clamped
+// (the edge face held) or free. Springs, pinned or guided beam ends are refused with a reason.
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "modalbench/harness/comparison.hpp"
+
+namespace modalbench {
+
+struct SolidMesh {
+  int nx = 1, ny = 1, nz = 1;  ///< elements along x, y, z
+};
+
+/// "This is Version 2.20"-style banner of `exe -v`, or "" when it does not run.
+std::string calculix_version(const std::string& exe);
+/// Empty if the scene can be modelled, else why not.
+std::string calculix_unsupported_reason(const Scene& scene);
+/// Meshes from coarse to fine for the scene.
+std::vector<SolidMesh> calculix_ladder(const Scene& scene);
+/// One CalculiX run in `work_dir` (input, log and .dat kept there). Failures come back as a
+/// failed record with the reason.
+RunRecord calculix_run(const Scene& scene, const SolidMesh& mesh, const std::string& exe, const std::string& work_dir);
+/// The ladder under a time budget (seconds), as runs for the harness.
+std::vector<RunRecord> calculix_runs(const Scene& scene, const std::string& exe, const std::string& work_dir,
+                                     double budget_s, std::ostream* progress);
+
+}  // namespace modalbench

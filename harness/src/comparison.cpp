@@ -1,0 +1,237 @@
+#include "modalbench/harness/comparison.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <map>
+
+namespace modalbench {
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+RunRecord timed_run(const Solver& s, const Scene& scene, const Discretization& mesh, const CompareOptions& opt) {
+  RunRecord rec;
+  rec.backend = s.name();
+  rec.mesh = mesh;
+  std::vector<double> times;
+  auto once = [&]() {
+    const auto t0 = clock_type::now();
+    Result r = s.solve(scene, mesh, Options{});
+    times.push_back(std::chrono::duration<double>(clock_type::now() - t0).count());
+    return r;
+  };
+  rec.result = once();  // warm-up; its result is the one kept
+  if (!opt.quick && !rec.failed() && times[0] < 1.0) {
+    times.clear();
+    double spent = 0;
+    while (static_cast<int>(times.size()) < opt.max_repeats && (times.size() < 3 || spent < opt.min_timing_s)) {
+      once();
+      spent += times.back();
+    }
+  }
+  std::vector<double> sorted = times;
+  std::sort(sorted.begin(), sorted.end());
+  rec.median_s = sorted[sorted.size() / 2];
+  rec.repeats = static_cast<int>(times.size());
+  return rec;
+}
+
+double mesh_h(const Discretization& d) {
+  double prod = 1;
+  for (int c : d.counts) prod *= c;
+  return d.counts.empty() ? kNaN : std::pow(prod, -1.0 / static_cast<double>(d.counts.size()));
+}
+
+/// A Richardson reference from the finest three successful runs of one back-end.
+std::optional<Reference> richardson_reference(const std::vector<RunRecord>& runs, const std::string& backend) {
+  std::vector<const RunRecord*> ok;
+  for (const auto& r : runs)
+    if (r.backend == backend && !r.failed() && !r.result.frequencies_rad_s.empty() && !r.mesh.counts.empty())
+      ok.push_back(&r);
+  if (ok.size() < 3) return std::nullopt;
+  const RunRecord& fine = *ok.back();
+  Reference ref;
+  ref.source = "richardson(" + backend + ")";
+  ref.families = fine.result.mode_families;
+  const auto m1 = match_modes(ref.families, ok[ok.size() - 3]->result.mode_families);
+  const auto m2 = match_modes(ref.families, ok[ok.size() - 2]->result.mode_families);
+  const std::vector<double> h = {mesh_h(ok[ok.size() - 3]->mesh), mesh_h(ok[ok.size() - 2]->mesh), mesh_h(fine.mesh)};
+  for (std::size_t i = 0; i < ref.families.size(); ++i) {
+    const double f3 = fine.result.frequencies_rad_s[i];
+    if (ref.families[i] == ModeFamily::Rigid || m1[i] < 0 || m2[i] < 0) {
+      ref.frequencies_rad_s.push_back(f3);
+      ref.frequency_uncertainty.push_back(ref.families[i] == ModeFamily::Rigid ? 0.0 : kNaN);
+      continue;
+    }
+    const Richardson rr = richardson(h, {ok[ok.size() - 3]->result.frequencies_rad_s[m1[i]],
+                                         ok[ok.size() - 2]->result.frequencies_rad_s[m2[i]], f3});
+    ref.frequencies_rad_s.push_back(rr.value);
+    ref.frequency_uncertainty.push_back(rr.ok ? rr.uncertainty : kNaN);
+  }
+  return ref;
+}
+
+}  // namespace
+
+void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run) {
+  const Result& r = run.result;
+  run.frequency_errors.assign(ref.frequencies_rad_s.size(), kNaN);
+  run.max_frequency_error = kNaN;
+  run.matched_by_order = std::none_of(r.mode_families.begin(), r.mode_families.end(), [](ModeFamily f) {
+    return f != ModeFamily::Unknown && f != ModeFamily::Rigid;
+  }) && !r.mode_families.empty();
+  if (!ref.frequencies_rad_s.empty() && !r.frequencies_rad_s.empty()) {
+    const auto match = match_modes(ref.families, r.mode_families);
+    const int first = std::min<int>(6, std::max(scene.request.modes, 1));
+    double worst = 0;
+    int counted = 0;
+    bool complete = true;
+    for (std::size_t i = 0; i < ref.frequencies_rad_s.size(); ++i) {
+      if (match[i] >= 0) run.frequency_errors[i] = relative_error(r.frequencies_rad_s[match[i]], ref.frequencies_rad_s[i]);
+      if (ref.families[i] == ModeFamily::Rigid || counted >= first) continue;
+      ++counted;
+      if (std::isnan(run.frequency_errors[i])) complete = false;
+      else worst = std::max(worst, run.frequency_errors[i]);
+    }
+    run.max_frequency_error = (complete && counted > 0) ? worst : kNaN;
+  }
+  run.deflection_error = kNaN;
+  if (!ref.deflections.empty() && r.deflections.size() == ref.deflections.size()) {
+    double scale = 0, worst = 0;
+    for (const auto& d : ref.deflections) scale = std::max(scale, std::abs(d.w));
+    for (std::size_t i = 0; i < ref.deflections.size(); ++i) worst = std::max(worst, std::abs(r.deflections[i].w - ref.deflections[i].w));
+    if (scale > 0) run.deflection_error = worst / scale;
+  }
+  run.frf_error_db = kNaN;
+  if (!ref.frf.empty() && !r.frf.empty()) {
+    std::vector<double> db;
+    std::size_t j = 0;
+    for (const auto& s : r.frf) {
+      while (j < ref.frf.size() && ref.frf[j].omega_rad_s < s.omega_rad_s - 1e-9 * (1 + s.omega_rad_s)) ++j;
+      if (j >= ref.frf.size()) break;
+      if (std::abs(ref.frf[j].omega_rad_s - s.omega_rad_s) > 1e-9 * (1 + s.omega_rad_s)) continue;
+      const double a = std::abs(s.receptance), b = std::abs(ref.frf[j].receptance);
+      if (a > 0 && b > 0 && std::isfinite(a) && std::isfinite(b)) db.push_back(std::abs(20 * std::log10(a / b)));
+    }
+    if (!db.empty()) {
+      std::nth_element(db.begin(), db.begin() + static_cast<long>(db.size() / 2), db.end());
+      run.frf_error_db = db[db.size() / 2];
+    }
+  }
+}
+
+double time_to_accuracy(const SceneComparison& c, const std::string& backend, double target) {
+  for (const auto& r : c.runs)
+    if (r.backend == backend && !r.failed() && r.max_frequency_error <= target) return r.median_s;
+  return kNaN;
+}
+
+std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, const Registry& registry,
+                                            const CompareOptions& opt) {
+  std::vector<SceneComparison> out;
+  for (const Scene& scene : scenes) {
+    SceneComparison c{scene, {}, {}, {}};
+    for (const Solver* s : registry.all()) {
+      const Capability cap = s->supports(scene);
+      if (!cap.any()) {
+        c.notes.push_back(fmt::format("{}: not run ({})", s->name(), cap.reason));
+        if (opt.progress) *opt.progress << fmt::format("[{}] {}: skipped ({})\n", scene.name, s->name(), cap.reason);
+        continue;
+      }
+      std::vector<Discretization> ladder = s->mesh_ladder(scene);
+      if (opt.quick && ladder.size() > 3) ladder.resize(3);
+      double spent = 0, last_time = 0, growth = 2.0;
+      for (std::size_t k = 0; k < ladder.size(); ++k) {
+        if (k > 0 && spent + last_time * growth > opt.budget_s) {
+          c.notes.push_back(fmt::format("{}: ladder stopped before mesh {} (time budget {:.0f} s per back-end)",
+                                        s->name(), ladder[k].spec(), opt.budget_s));
+          if (opt.progress)
+            *opt.progress << fmt::format("[{}] {}: ladder stopped before mesh {} (time budget {:.0f} s)\n", scene.name,
+                                         s->name(), ladder[k].spec(), opt.budget_s);
+          break;
+        }
+        if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...", scene.name, s->name(), ladder[k].spec()) << std::flush;
+        RunRecord rec = timed_run(*s, scene, ladder[k], opt);
+        const double t = rec.median_s * rec.repeats;
+        spent += t;
+        if (last_time > 0 && rec.median_s > 0) growth = std::clamp(rec.median_s / last_time, 1.5, 16.0);
+        last_time = rec.median_s;
+        if (opt.progress)
+          *opt.progress << fmt::format(" {} in {:.3g} s (x{})\n", to_string(rec.result.summary.status), rec.median_s,
+                                       rec.repeats);
+        c.runs.push_back(std::move(rec));
+      }
+    }
+    for (const auto& extra : opt.extra_references)
+      for (auto& rec : extra(scene, opt.progress)) c.runs.push_back(std::move(rec));
+
+    // The reference: the exact back-end where it succeeded, else Richardson.
+    for (const auto& r : c.runs) {
+      if (r.backend != "exact") continue;
+      const Result& x = r.result;
+      if (!x.frequencies_rad_s.empty() && x.summary.status == Status::Success) {
+        c.reference.source = "exact";
+        c.reference.frequencies_rad_s = x.frequencies_rad_s;
+        c.reference.families = x.mode_families;
+        c.reference.frequency_uncertainty.assign(x.frequencies_rad_s.size(), 0.0);
+      }
+      if (x.summary.status == Status::Success) {
+        c.reference.deflections = x.deflections;
+        c.reference.frf = x.frf;
+      }
+    }
+    // The exact deflection line on a fine grid, for the plots.
+    if (c.reference.source == "exact" && scene.is_beam() && !scene.loads.empty() && !c.reference.deflections.empty()) {
+      Scene fine = scene;
+      fine.request.modes = 0;
+      fine.request.frf.reset();
+      fine.request.probes.clear();
+      for (int i = 0; i <= 100; ++i) fine.request.probes.push_back({scene.geometry.length * i / 100.0, 0.0});
+      const Result line = registry.get("exact").solve(fine, {}, Options{});
+      if (line.ok()) c.reference.deflection_line = line.deflections;
+    }
+    if (c.reference.frequencies_rad_s.empty()) {
+      std::optional<Reference> best;
+      double best_unc = std::numeric_limits<double>::infinity();
+      for (const Solver* s : registry.all()) {
+        auto ref = richardson_reference(c.runs, s->name());
+        if (!ref) continue;
+        double worst = 0;
+        for (std::size_t i = 0; i < ref->frequencies_rad_s.size() && i < 6; ++i)
+          worst = std::max(worst, ref->frequency_uncertainty[i] / ref->frequencies_rad_s[i]);
+        if (std::isfinite(worst) && worst < best_unc) {
+          best_unc = worst;
+          best = std::move(ref);
+        }
+      }
+      if (best) {
+        c.notes.push_back(fmt::format("no exact solution: errors are against {} (relative uncertainty up to {:.1e})",
+                                      best->source, best_unc));
+        best->deflections = c.reference.deflections;
+        best->frf = c.reference.frf;
+        c.reference = std::move(*best);
+      } else {
+        c.reference.source = "none";
+        c.notes.push_back("no exact solution and no back-end converged well enough for a Richardson estimate: errors not measured");
+      }
+    }
+    for (auto& r : c.runs) measure_errors(scene, c.reference, r);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::vector<std::string> scene_files(const std::string& dir) {
+  std::vector<std::string> files;
+  if (!std::filesystem::is_directory(dir)) throw InputError(dir, "", "scene directory not found");
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace modalbench

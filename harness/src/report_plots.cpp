@@ -1,0 +1,50 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "report_document.hpp"
+
+namespace modalbench::report_detail {
+
+namespace fs = std::filesystem;
+
+std::string plot(Context& ctx, const std::string& name, const std::string& setup, const std::vector<Series>& series) {
+  std::vector<const Series*> used;
+  for (const auto& s : series)
+    if (!s.points.empty()) used.push_back(&s);
+  if (used.empty()) return "";
+  const fs::path pdir = fs::path(ctx.dir) / "plots";
+  fs::create_directories(pdir);
+  std::string cmd = "set terminal svg size 760,460 dynamic enhanced font 'Helvetica,12' background rgb 'white'\n";
+  cmd += fmt::format("set output '{}'\n{}\nset key outside right top\n", (pdir / (name + ".svg")).string(), setup);
+  cmd += "plot ";
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    const fs::path dat = pdir / fmt::format("{}_{}.dat", name, i);
+    std::ofstream d(dat);
+    for (auto& [x, y] : used[i]->points)
+      if (std::isfinite(x) && std::isfinite(y)) d << fmt::format("{:.10g} {:.10g}\n", x, y);
+    std::string title = used[i]->title;
+    std::replace(title.begin(), title.end(), '\'', ' ');
+    std::replace(title.begin(), title.end(), '_', '-');
+    cmd += fmt::format("{}'{}' using 1:2 with {} lw 2 title '{}'", i ? ", " : "", dat.string(), used[i]->style, title);
+  }
+  cmd += "\n";
+  const fs::path gp = pdir / (name + ".gp");
+  std::ofstream(gp) << cmd;
+  const std::string out = command_output(ctx.options.gnuplot + " '" + gp.string() + "'");
+  std::ifstream in(pdir / (name + ".svg"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (ss.str().find("<svg") == std::string::npos) {
+    ctx.problems.push_back(
+        fmt::format("plot {} not made (gnuplot: {})", name, out.empty() ? "no output" : out.substr(0, 200)));
+    return "";
+  }
+  return ss.str();
+}
+
+}  // namespace modalbench::report_detail

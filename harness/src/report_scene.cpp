@@ -1,0 +1,233 @@
+// One scene's section of the report: notes, error charts, the run ladder, frequencies,
+// the published table beside ours, the FRF overlay and the static deflections.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "modalbench/harness/paper_tables.hpp"
+#include "report_document.hpp"
+
+namespace modalbench::report_detail {
+
+namespace {
+
+void write_notes(Doc& doc, const SceneComparison& c) {
+  std::vector<std::string> notes = {fmt::format("scene file: {}", c.scene.source),
+                                    fmt::format("reference: {}", c.reference.source)};
+  for (const auto& n : c.scene.notes) notes.push_back("scene: " + n);
+  for (const auto& n : c.notes) notes.push_back(n);
+  doc.list(notes);
+}
+
+void write_error_charts(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
+  std::vector<Series> vs_time, vs_dofs;
+  for (const auto& b : backends_of(c)) {
+    if (b == c.reference.source) continue;
+    Series st{b, {}}, sd{b, {}};
+    for (const auto& r : c.runs)
+      if (r.backend == b && !r.failed() && std::isfinite(r.max_frequency_error) && r.max_frequency_error > 0) {
+        st.points.emplace_back(r.median_s, r.max_frequency_error);
+        if (r.result.summary.dofs > 0)
+          sd.points.emplace_back(static_cast<double>(r.result.summary.dofs), r.max_frequency_error);
+      }
+    vs_time.push_back(st);
+    vs_dofs.push_back(sd);
+  }
+  const std::string ylabel =
+      "set ylabel 'max relative error, first frequencies'\nset logscale xy\nset format y '10^{%T}'\nset grid\n";
+  if (auto svg = plot(ctx, sid + "_error_vs_time",
+                      "set title 'Error against run time'\nset xlabel 'run time [s]'\nset format x '10^{%T}'\n" + ylabel,
+                      vs_time);
+      !svg.empty())
+    doc.figure("plots/" + sid + "_error_vs_time.svg", svg,
+               "Error against run time (median): which method buys accuracy cheapest. Reference: " + c.reference.source);
+  if (auto svg = plot(ctx, sid + "_error_vs_dofs",
+                      "set title 'Error against model size'\nset xlabel 'degrees of freedom'\n" + ylabel, vs_dofs);
+      !svg.empty())
+    doc.figure("plots/" + sid + "_error_vs_dofs.svg", svg, "Error against the number of unknowns");
+}
+
+void write_runs_table(Doc& doc, const SceneComparison& c) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : c.runs) {
+    const auto& s = r.result.summary;
+    std::string msg = s.message;
+    if (msg.empty() && !s.warnings.empty()) msg = fmt::format("{} warning(s): {}", s.warnings.size(), s.warnings.front());
+    if (r.matched_by_order) msg = "modes matched by order (no family labels). " + msg;
+    rows.push_back({r.backend, r.mesh.spec(), std::to_string(s.dofs), to_string(s.status),
+                    fmt::format("{} (x{})", num_str(r.median_s), r.repeats), err_str(r.max_frequency_error),
+                    err_str(r.deflection_error),
+                    std::isfinite(r.frf_error_db) ? fmt::format("{:.2f}", r.frf_error_db) : "—", msg.substr(0, 160)});
+  }
+  doc.heading(3, "Runs");
+  doc.table({"back-end", "mesh", "DOFs", "status", "time [s] (repeats)", "freq. error", "deflection error",
+             "FRF error [dB]", "message"},
+            rows);
+}
+
+/// The reference beside the finest run of each back-end.
+void write_frequency_table(Doc& doc, const SceneComparison& c) {
+  if (c.reference.frequencies_rad_s.empty()) return;
+  std::vector<std::string> head = {"mode", "family", "reference [rad/s]"};
+  std::vector<const RunRecord*> cols;
+  for (const auto& b : backends_of(c))
+    if (b != c.reference.source)
+      if (const RunRecord* f = finest(c, b)) {
+        cols.push_back(f);
+        head.push_back(run_label(*f) + " (rel. error)");
+      }
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < c.reference.frequencies_rad_s.size(); ++i) {
+    std::string refcell = num_str(c.reference.frequencies_rad_s[i]);
+    if (c.reference.frequency_uncertainty[i] > 0) refcell += fmt::format(" ± {:.2g}", c.reference.frequency_uncertainty[i]);
+    std::vector<std::string> row = {std::to_string(i + 1), to_string(c.reference.families[i]), refcell};
+    for (const RunRecord* f : cols) {
+      const auto m = match_modes(c.reference.families, f->result.mode_families);
+      row.push_back(m[i] >= 0 ? fmt::format("{} ({})", num_str(f->result.frequencies_rad_s[m[i]]),
+                                            err_str(f->frequency_errors[i]))
+                              : "—");
+    }
+    rows.push_back(row);
+  }
+  doc.heading(3, "Frequencies (finest run of each back-end)");
+  doc.table(head, rows);
+}
+
+/// A run's frequencies of the family a published table lists (bending for beams, plate
+/// modes for plates); a run without labels gives its elastic modes in order.
+std::vector<double> published_family(const SceneComparison& c, const RunRecord& r) {
+  const ModeFamily want = c.scene.is_beam() ? ModeFamily::BendingXZ : ModeFamily::Plate;
+  const auto& fams = r.result.mode_families;
+  const bool labelled = std::any_of(fams.begin(), fams.end(), [](ModeFamily f) {
+    return f != ModeFamily::Unknown && f != ModeFamily::Rigid;
+  });
+  std::vector<double> fam;
+  for (std::size_t k = 0; k < r.result.frequencies_rad_s.size(); ++k)
+    if (labelled ? fams[k] == want : fams[k] != ModeFamily::Rigid) fam.push_back(r.result.frequencies_rad_s[k]);
+  return fam;
+}
+
+void write_published_table(Doc& doc, const SceneComparison& c) {
+  const PublishedTable pub = published_table(c.scene.name);
+  if (pub.columns.empty()) return;
+  std::vector<std::string> head = {"mode"};
+  for (const auto& col : pub.columns) head.push_back(col.label);
+  std::vector<std::vector<double>> ours;
+  for (const auto& r : c.runs)
+    if (!r.failed() && !r.result.frequencies_rad_s.empty()) {
+      head.push_back(fmt::format("ours: {}", run_label(r)));
+      ours.push_back(published_family(c, r));
+    }
+  std::vector<std::vector<std::string>> rows;
+  const std::size_t n = pub.columns.front().values.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::string> row = {std::to_string(i + 1)};
+    for (const auto& col : pub.columns) row.push_back(i < col.values.size() ? num_str(col.values[i]) : "—");
+    for (const auto& fam : ours) row.push_back(i < fam.size() ? num_str(fam[i]) : "—");
+    rows.push_back(row);
+  }
+  doc.heading(3, pub.title + ", side by side with ours");
+  doc.table(head, rows);
+  std::vector<std::string> notes;
+  for (const auto& col : pub.columns)
+    if (!col.note.empty()) notes.push_back(col.label + ": " + col.note);
+  doc.list(notes);
+}
+
+void write_frf(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
+  std::vector<Series> frf;
+  if (!c.reference.frf.empty()) {
+    Series s{"reference (" + c.reference.source + ")", {}, "lines"};
+    for (const auto& p : c.reference.frf) s.points.emplace_back(p.omega_rad_s, std::abs(p.receptance));
+    frf.push_back(s);
+  }
+  for (const auto& b : backends_of(c)) {
+    const RunRecord* f = finest(c, b);
+    if (!f || f->result.frf.empty() || b == c.reference.source) continue;
+    Series s{run_label(*f), {}, "lines"};
+    for (const auto& p : f->result.frf) s.points.emplace_back(p.omega_rad_s, std::abs(p.receptance));
+    frf.push_back(s);
+  }
+  if (!c.scene.request.frf) return;
+  const auto& fr = *c.scene.request.frf;
+  const std::string where =
+      c.scene.is_beam() ? fmt::format("force at x = {} m, response at x = {} m", fr.excite[0], fr.observe[0])
+                        : fmt::format("force at ({}, {}) m, response at ({}, {}) m", fr.excite[0], fr.excite[1],
+                                      fr.observe[0], fr.observe[1]);
+  if (auto svg = plot(ctx, sid + "_frf",
+                      "set title 'Receptance |w/F|'\nset xlabel 'omega [rad/s]'\nset ylabel '|w/F| [m/N]'\nset logscale "
+                      "y\nset format y '10^{%T}'\nset grid\n",
+                      frf);
+      !svg.empty())
+    doc.figure("plots/" + sid + "_frf.svg", svg, "Frequency response (finest run of each back-end), " + where);
+}
+
+/// Deflection w at the probes of a run as plot points (beam: against x; plate: probe number).
+Series deflection_series(const SceneComparison& c, const std::string& title, const std::vector<Deflection>& d,
+                         const std::string& style) {
+  Series s{title, {}, style};
+  for (std::size_t i = 0; i < d.size(); ++i)
+    s.points.emplace_back(c.scene.is_beam() ? d[i].position[0] : static_cast<double>(i + 1), d[i].w);
+  return s;
+}
+
+void write_deflections(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
+  if (c.scene.request.probes.empty()) return;
+  std::vector<std::string> head = {c.scene.is_beam() ? "probe x [m]" : "probe (x, y) [m]", "reference w [m]"};
+  std::vector<const RunRecord*> cols;
+  std::vector<Series> series;
+  const std::string ref_title = "reference (" + c.reference.source + ")";
+  if (!c.reference.deflection_line.empty()) {
+    Series s{ref_title, {}, "lines"};
+    for (const auto& d : c.reference.deflection_line) s.points.emplace_back(d.position[0], d.w);
+    series.push_back(s);
+  } else if (!c.reference.deflections.empty()) {
+    series.push_back(deflection_series(c, ref_title, c.reference.deflections, "points"));
+  }
+  for (const auto& b : backends_of(c))
+    if (b != c.reference.source)
+      if (const RunRecord* f = finest(c, b); f && f->result.deflections.size() == c.scene.request.probes.size()) {
+        cols.push_back(f);
+        head.push_back(run_label(*f) + " w [m]");
+        series.push_back(deflection_series(c, run_label(*f), f->result.deflections, "points"));
+      }
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < c.scene.request.probes.size(); ++i) {
+    const auto& p = c.scene.request.probes[i];
+    std::vector<std::string> row = {
+        c.scene.is_beam() ? num_str(p[0]) : fmt::format("({}, {})", p[0], p[1]),
+        i < c.reference.deflections.size() ? fmt::format("{:.6e}", c.reference.deflections[i].w) : "—"};
+    for (const RunRecord* f : cols) row.push_back(fmt::format("{:.6e}", f->result.deflections[i].w));
+    rows.push_back(row);
+  }
+  if (cols.empty() && c.reference.deflections.empty()) return;
+  doc.heading(3, "Static deflection at the probes");
+  doc.table(head, rows);
+  if (auto svg = plot(ctx, sid + "_deflection",
+                      std::string("set title 'Static deflection w at the probes'\nset xlabel '") +
+                          (c.scene.is_beam() ? "x [m]" : "probe number") + "'\nset ylabel 'w [m]'\nset grid\n",
+                      series);
+      !svg.empty())
+    doc.figure("plots/" + sid + "_deflection.svg", svg, "Static deflection under the scene's loads");
+}
+
+}  // namespace
+
+void write_scene(Doc& doc, const SceneComparison& c, Context& ctx) {
+  const std::string sid = slug(c.scene.name);
+  doc.heading(2,
+              fmt::format("{} — {} {} ({})", c.scene.name, to_string(c.scene.kind), to_string(c.scene.physics),
+                          to_string(c.scene.theory)),
+              sid);
+  write_notes(doc, c);
+  write_error_charts(doc, c, ctx, sid);
+  write_runs_table(doc, c);
+  write_frequency_table(doc, c);
+  write_published_table(doc, c);
+  write_frf(doc, c, ctx, sid);
+  write_deflections(doc, c, ctx, sid);
+}
+
+}  // namespace modalbench::report_detail
