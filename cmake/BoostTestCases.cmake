@@ -1,8 +1,10 @@
 # modalbench_add_boost_test(NAME name SOURCES a.cpp ... LIBS ...)
 # Builds one Boost.Test executable and registers every test case in CTest on its own
-# (suite/case), so CTest's counts are real. Test cases are read from the sources:
-# BOOST_AUTO_TEST_SUITE(s), BOOST_AUTO_TEST_CASE(c), BOOST_DATA_TEST_CASE(c, ...),
-# BOOST_FIXTURE_TEST_CASE(c, F), BOOST_AUTO_TEST_SUITE_END().
+# (suite/case), so CTest's counts are real. The cases are discovered after each build from
+# the executable's own `--list_content` (never by reading the sources), so every case Boost
+# knows is a CTest test. `test_registration_complete` (tests/CMakeLists.txt) checks it.
+set(MODALBENCH_BOOST_DISCOVER_SCRIPT ${CMAKE_CURRENT_LIST_DIR}/BoostTestDiscover.cmake)
+
 function(modalbench_add_boost_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
@@ -10,31 +12,20 @@ function(modalbench_add_boost_test)
   target_compile_definitions(${T_NAME} PRIVATE BOOST_TEST_DYN_LINK
     MODALBENCH_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes"
     MODALBENCH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
-  set(count 0)
-  foreach(src IN LISTS T_SOURCES)
-    # Re-run CMake when a test source changes, so added or renamed cases are registered.
-    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${src})
-    file(STRINGS ${src} lines)
-    set(suites "")
-    foreach(line IN LISTS lines)
-      if(line MATCHES "^[ \t]*BOOST_AUTO_TEST_SUITE\\(([A-Za-z0-9_]+)")
-        list(APPEND suites ${CMAKE_MATCH_1})
-      elseif(line MATCHES "^[ \t]*BOOST_AUTO_TEST_SUITE_END\\(")
-        list(POP_BACK suites)
-      elseif(line MATCHES "^[ \t]*BOOST_(AUTO|DATA|FIXTURE)_TEST_CASE\\(([A-Za-z0-9_]+)")
-        set(case ${CMAKE_MATCH_2})
-        list(JOIN suites "/" path)
-        if(path)
-          set(path "${path}/${case}")
-        else()
-          set(path "${case}")
-        endif()
-        add_test(NAME ${T_NAME}.${path} COMMAND ${T_NAME} --run_test=${path} --log_level=message)
-        math(EXPR count "${count} + 1")
-      endif()
-    endforeach()
-  endforeach()
-  if(count EQUAL 0)
-    message(FATAL_ERROR "${T_NAME}: no test cases found in ${T_SOURCES}")
-  endif()
+  set(cases_file ${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_cases.cmake)
+  set(include_file ${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_include.cmake)
+  add_custom_command(TARGET ${T_NAME} POST_BUILD
+    COMMAND ${CMAKE_COMMAND} -D TEST_EXECUTABLE=$<TARGET_FILE:${T_NAME}> -D TEST_NAME=${T_NAME}
+            -D OUTPUT=${cases_file} -P ${MODALBENCH_BOOST_DISCOVER_SCRIPT}
+    BYPRODUCTS ${cases_file}
+    COMMENT "Listing the test cases of ${T_NAME}"
+    VERBATIM)
+  file(WRITE ${include_file}
+    "if(EXISTS \"${cases_file}\")\n"
+    "  include(\"${cases_file}\")\n"
+    "else()\n"
+    "  add_test(${T_NAME}_NOT_BUILT ${T_NAME}_NOT_BUILT)\n"
+    "endif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${include_file})
+  set_property(GLOBAL APPEND PROPERTY MODALBENCH_BOOST_TESTS ${T_NAME})
 endfunction()
