@@ -76,7 +76,23 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     r.cell = box(std::max(0.0, x - d / 2), std::min(L, x + d / 2), -bw / 2, bw / 2, -bh / 2, bh / 2);
     r.label = fmt::format("rfe {}", j);
     m.elements.push_back(r);
+    m.grid.x.push_back(x);
+    m.grid.element.push_back(j);
   }
+  m.grid.y = {0.0};
+  // Slope jumps of the second-order fields under their own point actions (PointSingularity).
+  auto kink = [&](int dof, double stiffness) {
+    if (std::find(m.active.begin(), m.active.end(), dof) == m.active.end()) return;
+    m.singularities.push_back({dof, dof, PointSingularity::Kind::Kink, 0.5 / stiffness});
+  };
+  kink(dofs::Ux, mat.E * sec.A);
+  if (!eb) {
+    kink(dofs::Uz, mat.kappa * mat.G * sec.A);
+    kink(dofs::Uy, mat.kappa * mat.G * sec.A);
+  }
+  kink(dofs::Rx, mat.G * sec.J);
+  kink(dofs::Ry, mat.E * sec.Iy);
+  kink(dofs::Rz, mat.E * sec.Iz);
   // SDEs at the segment middles.
   const double kGA = mat.kappa * mat.G * sec.A;
   for (int j = 0; j < n; ++j) {
@@ -231,7 +247,22 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
                    std::min(b, y + db / 2), -h / 2, h / 2);
       r.label = fmt::format("rfe ({},{})", i, j);
       m.elements.push_back(r);
+      m.grid.element.push_back(id(i, j));
     }
+  for (int i = 0; i <= nx; ++i) m.grid.x.push_back(i * dl);
+  for (int j = 0; j <= ny; ++j) m.grid.y.push_back(j * db);
+  // The point-load Green's function's singular part (PointSingularity): r^2 ln r / (8 pi D) in w
+  // and its gradient in the rotations; Mindlin adds -ln r / (2 pi kappa G h) in w.
+  {
+    using PS = PointSingularity;
+    const double c = 1.0 / (8.0 * pi * D);
+    m.singularities.push_back({dofs::Uz, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::None});
+    m.singularities.push_back({dofs::Rx, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::PlusDy});
+    m.singularities.push_back({dofs::Ry, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::MinusDx});
+    if (!kirchhoff)
+      m.singularities.push_back(
+          {dofs::Uz, dofs::Uz, PS::Kind::ShearLog, 1.0 / (2.0 * pi * mat.kappa * mat.G * h), PS::Derivative::None});
+  }
 
   // Table A1.1 in-plane torsion constant of the fragment (inactive in plate bending; kept for completeness).
   const double lmin = std::min(dl, db), lmax = std::max(dl, db);

@@ -133,8 +133,8 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
 
   std::string method = fmt::format(
       "rfem (lumped): {}; {} coordinates ({} held by rigid supports eliminated{}); mass: diagonal RFE mass "
-      "(--mass {} does not apply); probes: u_P = D(r) q of the RFE containing P (mean over RFEs sharing a cell "
-      "boundary); loads: D(r)' F on that RFE (split on a boundary)",
+      "(--mass {} does not apply); probes: (bi)linear interpolation of the motion of the RFE centres around P "
+      "(second order, as the centres); loads: its transpose (the action shared by the same weights)",
       model.description, sys.n(), sys.held,
       sys.m() > 0 ? fmt::format(", {} rigid-link constraints as multipliers{}", sys.m(),
                                 sys.redundant > 0 ? fmt::format(", {} dependent ones dropped", sys.redundant) : "")
@@ -193,7 +193,21 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
         Deflection d;
         d.position = p;
         double v[6];
-        for (int c = 0; c < 6; ++c) v[c] = point_observer(model, sys, P, c).dot(st.z);
+        for (int c = 0; c < 6; ++c) {
+          v[c] = point_observer(model, sys, P, c).dot(st.z);
+          // The singular part of the response to each load that interpolation misses.
+          for (const auto& l : s.loads) {
+            const double action[6] = {l.Fx, l.Fy, l.Fz, l.Mx, l.My, l.Mz};
+            for (int a = 0; a < 6; ++a)
+              if (action[a] != 0.0) v[c] += point_correction(model, P, c, point_of(s, {l.x, l.y}), a) * action[a];
+          }
+        }
+        if (!std::isfinite(v[2])) {
+          set_status(r, Status::NumericalIssue,
+                     fmt::format("probe ({}, {}): the deflection under a point load on a Mindlin plate is infinite "
+                                 "(logarithmic in the distance to the load); it is reported as null",
+                                 p[0], p[1]));
+        }
         d.u = v[0];
         d.v = v[1];
         d.w = v[2];
@@ -222,6 +236,9 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
     unit[2] = 1.0;
     const Eigen::VectorXd f = point_load(model, sys, point_of(s, fr.excite), unit);
     const Eigen::VectorXd g = point_observer(model, sys, point_of(s, fr.observe), 2);
+    // The singular part of the point response that interpolation between centres misses
+    // (static in character: the same at every frequency).
+    const double singular = point_correction(model, point_of(s, fr.observe), 2, point_of(s, fr.excite), 2);
     FrfResult res;
     if (modal_frf) {
       if (md.lambda.size() < options.frf_modes)
@@ -250,7 +267,11 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
       res = frf_direct(model, sys, f, g, omegas);
       phases.add("factorization", res.factor_seconds);
     }
-    for (std::size_t i = 0; i < res.omega.size(); ++i) r.frf.push_back({res.omega[i], res.receptance[i]});
+    if (!std::isfinite(singular))
+      set_status(r, Status::NumericalIssue,
+                 "FRF: excitation and observation at one point of a Mindlin plate: the receptance is infinite "
+                 "(logarithmic singularity of the point load)");
+    for (std::size_t i = 0; i < res.omega.size(); ++i) r.frf.push_back({res.omega[i], res.receptance[i] + singular});
     if (res.skipped > 0)
       r.summary.warnings.push_back(
           fmt::format("FRF: {} sample(s) omitted (singular: on a natural frequency, or w = 0 of a free body)", res.skipped));

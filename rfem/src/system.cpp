@@ -97,8 +97,6 @@ Vector6d body_vector(const Model& m, const Eigen::VectorXd& q, int e) {
   return v;
 }
 
-double tolerance_length(const Model& m) { return 1e-9 * m.length_scale; }
-
 /// Deformation of an SDE (local axes) under body motion q.
 Vector6d deformation(const Model& m, const Sde& sd, const Eigen::VectorXd& q) {
   const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
@@ -304,35 +302,6 @@ std::string coordinate_name(const Model& m, const System& sys, long i) {
   return m.basis.cols() > 0 ? m.basis_names.at(static_cast<std::size_t>(j)) : m.dof_name(j);
 }
 
-std::vector<std::pair<int, double>> containing_elements(const Model& m, const Eigen::Vector3d& P) {
-  const double tol = tolerance_length(m);
-  std::vector<int> hits;
-  for (std::size_t e = 0; e < m.elements.size(); ++e) {
-    const auto& c = m.elements[e].cell;
-    if ((P.array() >= c.min().array() - tol).all() && (P.array() <= c.max().array() + tol).all())
-      hits.push_back(static_cast<int>(e));
-  }
-  std::vector<std::pair<int, double>> out;
-  for (int e : hits) out.emplace_back(e, 1.0 / static_cast<double>(hits.size()));
-  return out;
-}
-
-Eigen::VectorXd point_load(const Model& m, const System& sys, const Eigen::Vector3d& P, const Vector6d& action) {
-  const auto hits = containing_elements(m, P);
-  if (hits.empty())
-    throw std::invalid_argument(fmt::format("rfem: the point ({}, {}, {}) lies in no rigid element", P.x(), P.y(), P.z()));
-  const int na = m.dofs_per_element();
-  Eigen::VectorXd fq = Eigen::VectorXd::Zero(m.body_dofs());
-  for (auto [e, w] : hits) {
-    const Vector6d f = attachment(P - m.elements[static_cast<std::size_t>(e)].centre).transpose() * action * w;
-    for (int k = 0; k < na; ++k) fq[static_cast<long>(e) * na + k] += f[m.active[static_cast<std::size_t>(k)]];
-  }
-  return sys.T.transpose() * fq;
-}
-
-Eigen::VectorXd point_observer(const Model& m, const System& sys, const Eigen::Vector3d& P, int comp) {
-  return point_load(m, sys, P, Vector6d::Unit(comp));
-}
 
 double relative_deformation(const Model& m, const Eigen::VectorXd& q) {
   const double L = m.length_scale;

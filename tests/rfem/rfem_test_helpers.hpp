@@ -88,6 +88,21 @@ inline std::vector<double> frequencies(const rfem::Model& m, int k, rfem::EigenM
 
 inline double rel(double a, double b) { return std::abs(a / b - 1.0); }
 
+/// Least-squares slope of -log(error) against log(count): the observed order of a ladder whose
+/// error is not monotone on every rung (points between nodes sit at varying fractions of a cell).
+inline double fitted_order(const std::vector<double>& counts, const std::vector<double>& errors) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(counts.size());
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    const double x = std::log(counts[i]), y = -std::log(std::abs(errors[i]));
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
 /// Observed order from errors on meshes h and h/2.
 inline double order(double e_coarse, double e_fine) { return std::log2(std::abs(e_coarse) / std::abs(e_fine)); }
 

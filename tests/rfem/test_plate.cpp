@@ -281,4 +281,44 @@ BOOST_AUTO_TEST_CASE(ss_plate_point_load_converges_to_navier_series) {
   BOOST_TEST(std::abs(err[2]) < 5e-3);
 }
 
+// A load and probes between the RFE centres (never nodes of the ladder), the driving point
+// included: deflections and rotations converge to the Navier series at the order of the nodal
+// values (2, with the log of the point load's r^2 ln r). Largest error over the probes (w against
+// max |w|, rotations against max |theta|).
+BOOST_AUTO_TEST_CASE(off_node_load_and_probes_converge_at_second_order) {
+  Scene s = plate_scene(Theory::Kirchhoff, Support::named("pinned"), Support::named("pinned"), Support::named("pinned"),
+                        Support::named("pinned"));
+  PointLoad f;
+  f.x = 0.37;
+  f.y = 0.23;
+  f.Fz = -1000.0;
+  s.loads = {f};
+  s.request.probes = {{0.37, 0.23}, {0.52, 0.31}, {0.81, 0.44}};
+  const Result ex = exact::ExactSolver().solve(s, {}, Options{});
+  BOOST_REQUIRE(ex.deflections.size() == 3u);
+  double wmax = 0, tmax = 0;
+  for (const auto& d : ex.deflections) {
+    wmax = std::max(wmax, std::abs(d.w));
+    tmax = std::max({tmax, std::abs(d.theta_x), std::abs(d.theta_y)});
+  }
+  std::vector<double> counts, errors;
+  for (Grid g : std::vector<Grid>{{10, 6}, {20, 12}, {40, 24}, {80, 48}}) {
+    const Result r = RfemSolver().solve(s, Discretization{{g.nx, g.ny}}, Options{});
+    BOOST_REQUIRE(r.ok());
+    double e = 0;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto &a = r.deflections[i], &b = ex.deflections[i];
+      e = std::max({e, std::abs(a.w - b.w) / wmax, std::abs(a.theta_x - b.theta_x) / tmax,
+                    std::abs(a.theta_y - b.theta_y) / tmax});
+    }
+    counts.push_back(g.nx);
+    errors.push_back(e);
+    BOOST_TEST_MESSAGE(g.nx << "x" << g.ny << ": largest error " << e);
+  }
+  const double p = fitted_order(counts, errors);
+  BOOST_TEST_MESSAGE("observed order " << p);
+  BOOST_TEST(p > 1.7);
+  BOOST_TEST(errors.back() < 2e-3);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -151,8 +151,12 @@ BOOST_AUTO_TEST_CASE(complete_spectrum_frf_equals_per_frequency_solves) {
     for (std::size_t i = 0; i < r.frf.size(); i += 37) omegas.push_back(r.frf[i].omega_rad_s);
     const FrfResult d = frf_direct(m, sys, point_load(m, sys, pe, fz), point_observer(m, sys, po, 2), omegas);
     BOOST_REQUIRE(d.omega.size() == omegas.size());
-    for (std::size_t k = 0; k < omegas.size(); ++k)
-      BOOST_TEST(std::abs(d.receptance[k] - r.frf[37 * k].receptance) <= 1e-8 * std::abs(d.receptance[k]));
+    // The solver adds the singular part of the point response (the same at every frequency).
+    const double singular = point_correction(m, po, 2, pe, 2);
+    for (std::size_t k = 0; k < omegas.size(); ++k) {
+      const std::complex<double> direct = d.receptance[k] + singular;
+      BOOST_TEST(std::abs(direct - r.frf[37 * k].receptance) <= 1e-8 * std::abs(direct));
+    }
   }
 }
 

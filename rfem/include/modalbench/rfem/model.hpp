@@ -60,12 +60,46 @@ struct Coupling {
   std::shared_ptr<const Eigen::MatrixXd> stiffness;
 };
 
+/// Beams and plates: the RFE centres form a tensor grid, centre (i, j) at (x[i], y[j], 0) being
+/// element[i + x.size() * j] (a beam has y = {0}). A load or observation point between centres is
+/// interpolated (bi)linearly from the centres around it: the interpolant is second-order
+/// accurate, like the centres' own motion, where the rigid attachment to the one RFE containing
+/// the point (its motion jumps at every SDE) is only first order. Empty for models without a
+/// grid (boxes), which attach points rigidly.
+struct CentreGrid {
+  std::vector<double> x, y;  ///< ascending
+  std::vector<int> element;
+  bool empty() const { return x.empty(); }
+};
+
+/// The singular part S(P, Q) of the continuum's response at P (component `observed`) to a unit
+/// point action at Q (component `load`), which no interpolation between centres carries:
+///  - Kink: -c |x_P - x_Q| (beams: a second-order field with stiffness S has a slope jump 1/S under
+///    its point action; c = 1 / (2 S): w under Fz for Timoshenko (S = kGA), u under Fx (EA), the
+///    twist under Mx (GJ), the bending rotation under its moment (EI));
+///  - Biharmonic: c r^2 ln r (Kirchhoff and Mindlin plates, c = 1 / (8 pi D)), or its derivative for
+///    an observed rotation (theta_x = +d/dy, theta_y = -d/dx at P);
+///  - ShearLog: -c ln r (Mindlin plates, c = 1 / (2 pi kappa G h)): infinite at r = 0.
+/// point_correction adds S(P, Q) - (interpolation of S between the centres around P and Q), so a
+/// response at or near a loaded point converges as the centres do.
+struct PointSingularity {
+  enum class Kind { Kink, Biharmonic, ShearLog };
+  enum class Derivative { None, PlusDy, MinusDx };
+  int observed = 0;  ///< dofs::Index
+  int load = 0;      ///< dofs::Index
+  Kind kind = Kind::Kink;
+  double coefficient = 0;
+  Derivative derivative = Derivative::None;
+};
+
 struct Model {
   std::string description;             ///< one line: what was built
   std::vector<int> active;             ///< DOFs per RFE (dofs::kBendingXZ, ...)
   std::vector<RigidElement> elements;
   std::vector<Sde> sdes;
   std::vector<Coupling> couplings;
+  CentreGrid grid;  ///< see CentreGrid (empty: rigid attachment)
+  std::vector<PointSingularity> singularities;  ///< with a grid only
   /// Optional generalized coordinates: q = basis z (rows: active DOFs, element-major). Empty: z = q.
   SpMat basis;
   std::vector<std::string> basis_names;  ///< one per column of `basis`

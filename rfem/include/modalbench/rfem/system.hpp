@@ -43,14 +43,28 @@ std::string coordinate_name(const Model& model, const System& sys, long i);
 /// 1 / count: a point on a cell boundary belongs equally to the RFEs that share it.
 std::vector<std::pair<int, double>> containing_elements(const Model& model, const Eigen::Vector3d& P);
 
-/// Generalized force over z of a point action [F; M] (global) applied at P: D(r)' [F; M] on the
-/// RFE containing P (split equally on a cell boundary). Throws std::invalid_argument if no RFE
-/// contains P.
+/// The RFEs whose motion a point P follows, with weights: on a model with a centre grid the
+/// (bi)linear interpolation weights of the (up to four) centres around P; otherwise the RFEs
+/// containing P (1 / count each). Throws std::invalid_argument if P lies outside the body.
+std::vector<std::pair<int, double>> point_weights(const Model& model, const Eigen::Vector3d& P);
+
+/// Generalized force over z of a point action [F; M] (global) applied at P, the transpose of the
+/// observation operator (so loads and probes are reciprocal): with a centre grid, sum_e w_e [F; M]
+/// on the centres around P (point_weights); without, D(r)' [F; M] on the RFE containing P (split
+/// equally on a cell boundary). Throws std::invalid_argument if P lies outside the body.
 Eigen::VectorXd point_load(const Model& model, const System& sys, const Eigen::Vector3d& P, const Vector6d& action);
 
-/// Row r with r' z = component `comp` (0..5 of [u; theta]) of the motion of P rigidly attached
-/// to the RFE containing P (u_P = D(r) q; averaged on a cell boundary).
+/// Row r with r' z = component `comp` (0..5 of [u; theta]) of the motion of P: interpolated
+/// between the centres around P (centre grid), or rigidly attached to the RFE containing P
+/// (u_P = D(r) q; averaged on a cell boundary).
 Eigen::VectorXd point_observer(const Model& model, const System& sys, const Eigen::Vector3d& P, int comp);
+
+/// The part of the response at P (component `observed`, dofs::Index) to a unit point action at
+/// Q (component `load`) that the interpolated observation of the interpolated load misses: the
+/// model's singular kernels (Model::singularities) minus their interpolation. Add it to
+/// point_observer(P)' z for a load at Q. Zero when the model has no singularity for the pair;
+/// +inf for the deflection at a point load on a Mindlin plate (logarithmically infinite).
+double point_correction(const Model& model, const Eigen::Vector3d& P, int observed, const Eigen::Vector3d& Q, int load);
 
 /// Rigid-body motions of the whole model that no spring, support or coupling resists.
 struct RigidModes {
