@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 
@@ -43,12 +44,44 @@ int run_list(const mb::Registry& reg) {
   return 0;
 }
 
+int run_options(const mb::Registry& reg, const std::string& only) {
+  if (!only.empty()) {
+    const auto names = reg.names();
+    if (std::find(names.begin(), names.end(), only) == names.end()) {
+      std::cerr << "modalbench: options: unknown back-end '" << only << "'\n";
+      return 2;
+    }
+  }
+  for (const auto* s : reg.all()) {
+    if (!only.empty() && s->name() != only) continue;
+    const auto specs = s->option_specs();
+    std::cout << fmt::format("{} ([backend.{}] in a scene, --option KEY=VALUE on the command line):\n", s->name(),
+                             s->name());
+    if (specs.empty()) std::cout << "  (none)\n";
+    for (const auto& o : specs) {
+      std::string range;
+      switch (o.type) {
+        case mb::OptionSpec::Type::Bool: range = "true | false"; break;
+        case mb::OptionSpec::Type::Choice:
+          for (const auto& c : o.choices) range += (range.empty() ? "" : " | ") + c;
+          break;
+        case mb::OptionSpec::Type::Integer: range = fmt::format("integer in [{}, {}]", o.min, o.max); break;
+        case mb::OptionSpec::Type::Number: range = fmt::format("number in [{}, {}]", o.min, o.max); break;
+      }
+      std::cout << fmt::format("  {} = {}   ({})\n      {}\n", o.key, o.default_value, range, o.help);
+    }
+  }
+  return 0;
+}
+
 void print_text(const mb::Scene& scene, const std::string& backend, const mb::Discretization& mesh,
                 const mb::Result& r) {
   std::cout << fmt::format("scene {} | backend {} | mesh {} | {}\n", scene.name, backend, mesh.spec(),
                            mb::to_string(r.summary.status));
   if (!r.summary.message.empty()) std::cout << "  " << r.summary.message << "\n";
+  std::cout << "  options: " << r.summary.method_requested << "\n";
   if (!r.summary.method.empty()) std::cout << "  method: " << r.summary.method << "\n";
+  for (const auto& f : r.summary.fallbacks) std::cout << "  fall-back: " << f << "\n";
   for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i)
     std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  {:>14.8g} Hz  {}\n", i + 1, r.frequencies_rad_s[i],
                              r.frequencies_rad_s[i] / (2 * 3.141592653589793), mb::to_string(r.mode_families[i]));
@@ -75,7 +108,14 @@ int main(int argc, char** argv) {
   solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`)");
   solve->add_option("--mesh,-m", mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
   solve->add_option("--mass", mass, "consistent or lumped (back-ends that offer both)");
+  std::vector<std::string> backend_options;
+  solve->add_option("--option,-o", backend_options,
+                    "back-end option KEY=VALUE (repeatable; over the scene's [backend.NAME]; see `modalbench options`)");
   solve->add_flag("--json", json, "print one JSON object (schema in README.md)");
+
+  auto* opts = app.add_subcommand("options", "list a back-end's options with their defaults");
+  std::string opts_backend;
+  opts->add_option("backend", opts_backend, "back-end name (default: all)");
 
   auto* cmp = app.add_subcommand("compare", "run every back-end on scenes and write a report");
   std::vector<std::string> cmp_scenes;
@@ -106,8 +146,10 @@ int main(int argc, char** argv) {
   try {
     const mb::Registry reg = mb::make_default_registry();
     if (*list) return run_list(reg);
+    if (*opts) return run_options(reg, opts_backend);
     if (*solve) {
       const mb::Scene scene = mb::load_scene(scene_path);
+      reg.check_backend_tables(scene);
       const mb::Solver* found = nullptr;
       try {
         found = &reg.get(backend);
@@ -119,7 +161,13 @@ int main(int argc, char** argv) {
       const mb::Discretization mesh =
           mesh_spec.empty() ? solver.default_mesh(scene) : mb::Discretization::parse(mesh_spec);
       mb::Options opt;
-      opt.mass = mass;
+      opt.mass = mb::parse_mass_model(mass, "command line", "--mass");
+      for (const auto& kv : backend_options) {
+        const auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0)
+          throw mb::InputError("command line", "--option", "expected KEY=VALUE (got '" + kv + "')");
+        opt.backend.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+      }
       const mb::Result r = solver.solve(scene, mesh, opt);
       if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
       else print_text(scene, backend, mesh, r);
@@ -146,6 +194,7 @@ int main(int argc, char** argv) {
         for (const auto& f : mb::scene_files(scenes_dir())) scenes.push_back(mb::load_scene(f));
       else
         for (const auto& f : cmp_scenes) scenes.push_back(mb::load_scene(f));
+      for (const auto& sc : scenes) reg.check_backend_tables(sc);
       mb::CompareOptions opt;
       opt.budget_s = budget_s;
       opt.quick = quick;

@@ -19,8 +19,12 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   j["mesh"] = mesh.spec();
   j["status"] = to_string(r.summary.status);
   j["message"] = r.summary.message;
-  j["method"] = r.summary.method;
-  j["dofs"] = r.summary.dofs;
+  j["method"] = {{"requested", r.summary.method_requested},
+                 {"used", r.summary.method},
+                 {"fallbacks", r.summary.fallbacks}};
+  j["unknowns"] = r.summary.unknowns;
+  j["threads"] = r.summary.threads;
+  j["max_backward_error"] = num(r.summary.max_backward_error);
   json freqs = json::array(), fams = json::array();
   for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i) {
     freqs.push_back(num(r.frequencies_rad_s[i]));
@@ -55,13 +59,12 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
       f.push_back({{"omega_rad_s", num(s.omega_rad_s)}, {"re", num(s.receptance.real())}, {"im", num(s.receptance.imag())}});
     j["frf"] = f;
   }
-  json timing = json::object();
-  for (const auto& [phase, t] : r.summary.timings_s) timing[phase] = t;
-  timing["total"] = r.summary.total_time_s;
-  j["timing_s"] = timing;
-  j["diagnostics"] = {{"iterations", r.summary.iterations},
-                      {"max_residual", num(r.summary.max_residual)},
-                      {"condition_estimate", num(r.summary.condition_estimate)}};
+  const auto& t = r.summary.timings_s;
+  j["timing_s"] = {{"build", t.build}, {"modes", t.modes}, {"statics", t.statics}, {"frf", t.frf},
+                   {"total", r.summary.total_time_s}};
+  json diag = json::object();
+  for (const auto& [name, v] : r.summary.diagnostics) diag[name] = num(v);
+  j["diagnostics"] = diag;
   json warnings = json::array();
   for (const auto& n : scene.notes) warnings.push_back("scene: " + n);
   for (const auto& w : r.summary.warnings) warnings.push_back(w);

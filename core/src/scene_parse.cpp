@@ -232,6 +232,30 @@ void read_request(const Reader& r, const toml::table& root, Scene& s) {
   }
 }
 
+/// [backend.NAME]: scalar options per back-end, kept as text for the back-end to validate.
+void read_backend_options(const Reader& r, const toml::table& root, Scene& s) {
+  const toml::node* bn = root.get("backend");
+  if (!bn) return;
+  const auto* bt = bn->as_table();
+  if (!bt) r.fail("backend", "must be a table of back-end tables ([backend.NAME])");
+  for (auto&& [name, node] : *bt) {
+    const std::string where = "backend." + std::string(name.str());
+    const auto* t = node.as_table();
+    if (!t) r.fail(where, "must be a table of options (key = value)");
+    auto& list = s.backend_options[std::string(name.str())];
+    for (auto&& [key, v] : *t) {
+      const std::string full = where + "." + std::string(key.str());
+      std::string text;
+      if (auto b = v.as_boolean()) text = b->get() ? "true" : "false";
+      else if (auto i = v.as_integer()) text = std::to_string(i->get());
+      else if (auto f = v.as_floating_point()) text = fmt::format("{}", f->get());
+      else if (auto str = v.as_string()) text = str->get();
+      else r.fail(full, "an option value must be a boolean, a number or a string");
+      list.push_back({std::string(key.str()), text});
+    }
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, const std::string& source) {
@@ -243,7 +267,7 @@ Scene parse_scene(std::string_view text, const std::string& source) {
     throw InputError(source, fmt::format("line {}", e.source().begin.line),
                      std::string("TOML syntax: ") + std::string(e.description()));
   }
-  r.only_keys(root, "", {"scene", "geometry", "material", "supports", "loads", "request"});
+  r.only_keys(root, "", {"scene", "geometry", "material", "supports", "loads", "request", "backend"});
   Scene s;
   s.source = source;
   read_scene_table(r, root, s);
@@ -252,6 +276,7 @@ Scene parse_scene(std::string_view text, const std::string& source) {
   read_supports(r, root, s);
   read_loads(r, root, s);
   read_request(r, root, s);
+  read_backend_options(r, root, s);
   validate(s);
   return s;
 }

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <new>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,10 +17,46 @@ std::string to_string(Status s) {
     case Status::Success: return "success";
     case Status::NotConverged: return "not-converged";
     case Status::NumericalIssue: return "numerical-issue";
+    case Status::ResourceLimit: return "resource-limit";
     case Status::Unsupported: return "unsupported";
     case Status::InvalidInput: return "invalid-input";
   }
   return "?";
+}
+
+int severity(Status s) { return static_cast<int>(s); }
+
+void Summary::raise(Status s, const std::string& text) {
+  if (severity(s) > severity(status)) status = s;
+  if (!text.empty()) message += (message.empty() ? "" : "; ") + text;
+}
+
+void Summary::set_diagnostic(const std::string& name, double value) {
+  for (auto& [n, v] : diagnostics)
+    if (n == name) {
+      v = value;
+      return;
+    }
+  diagnostics.emplace_back(name, value);
+}
+
+double Summary::diagnostic(const std::string& name) const {
+  for (const auto& [n, v] : diagnostics)
+    if (n == name) return v;
+  return kNotMeasured;
+}
+
+void Summary::note_backward_error(double e) {
+  if (std::isnan(e)) return;
+  max_backward_error = std::isnan(max_backward_error) ? e : std::max(max_backward_error, e);
+}
+
+std::string to_string(MassModel m) { return m == MassModel::Consistent ? "consistent" : "lumped"; }
+
+MassModel parse_mass_model(const std::string& text, const std::string& source, const std::string& key) {
+  if (text == "consistent") return MassModel::Consistent;
+  if (text == "lumped") return MassModel::Lumped;
+  throw InputError(source, key, "must be consistent or lumped (got '" + text + "')");
 }
 
 std::string to_string(ModeFamily f) {
@@ -61,18 +101,111 @@ Discretization Discretization::parse(const std::string& spec) {
   return d;
 }
 
+namespace {
+
+bool parse_bool(const std::string& t, bool& out) {
+  if (t == "true") out = true;
+  else if (t == "false") out = false;
+  else return false;
+  return true;
+}
+
+/// Checks `text` against `spec`; returns the reason it is not valid, or "".
+std::string check_option(const OptionSpec& spec, const std::string& text) {
+  switch (spec.type) {
+    case OptionSpec::Type::Bool: {
+      bool b;
+      return parse_bool(text, b) ? "" : "must be true or false (got '" + text + "')";
+    }
+    case OptionSpec::Type::Choice: {
+      if (std::find(spec.choices.begin(), spec.choices.end(), text) != spec.choices.end()) return "";
+      std::string list;
+      for (const auto& c : spec.choices) list += (list.empty() ? "" : ", ") + c;
+      return "must be one of " + list + " (got '" + text + "')";
+    }
+    case OptionSpec::Type::Integer:
+    case OptionSpec::Type::Number: {
+      const bool integer = spec.type == OptionSpec::Type::Integer;
+      char* end = nullptr;
+      errno = 0;
+      const double v = integer ? static_cast<double>(std::strtoll(text.c_str(), &end, 10)) : std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+        return fmt::format("must be {} (got '{}')", integer ? "an integer" : "a finite number", text);
+      if (!(v >= spec.min && v <= spec.max)) return fmt::format("must lie in [{}, {}] (got {})", spec.min, spec.max, text);
+      return "";
+    }
+  }
+  return "";
+}
+
+ResolvedOptions resolve_options(const Solver& solver, const Scene& scene, const Options& options) {
+  const std::vector<OptionSpec> specs = solver.option_specs();
+  ResolvedOptions out;
+  for (const auto& spec : specs) out.entries.push_back({spec, spec.default_value, "default"});
+  std::string allowed;
+  for (const auto& spec : specs) allowed += (allowed.empty() ? "" : ", ") + spec.key;
+  if (allowed.empty()) allowed = "none";
+  auto apply = [&](const std::string& key, const std::string& text, const std::string& source,
+                   const std::string& full_key) {
+    for (auto& e : out.entries)
+      if (e.spec.key == key) {
+        const std::string why = check_option(e.spec, text);
+        if (!why.empty()) throw InputError(source, full_key, why);
+        e.text = text;
+        e.source = source;
+        return;
+      }
+    throw InputError(source, full_key, "unknown option of back-end " + solver.name() + " (allowed: " + allowed + ")");
+  };
+  if (auto it = scene.backend_options.find(solver.name()); it != scene.backend_options.end())
+    for (const auto& o : it->second)
+      apply(o.key, o.text, scene.source.empty() ? "<scene>" : scene.source, "backend." + solver.name() + "." + o.key);
+  for (const auto& [key, text] : options.backend) apply(key, text, "command line", "--option " + key);
+  return out;
+}
+
+}  // namespace
+
+const ResolvedOptions::Entry& ResolvedOptions::find(const std::string& key, OptionSpec::Type type) const {
+  for (const auto& e : entries)
+    if (e.spec.key == key) {
+      if (e.spec.type != type) throw std::logic_error("option '" + key + "' read with the wrong type");
+      return e;
+    }
+  throw std::logic_error("option '" + key + "' is not declared by the back-end");
+}
+
+bool ResolvedOptions::get_bool(const std::string& key) const {
+  bool b = false;
+  parse_bool(find(key, OptionSpec::Type::Bool).text, b);
+  return b;
+}
+long ResolvedOptions::get_integer(const std::string& key) const {
+  return std::strtol(find(key, OptionSpec::Type::Integer).text.c_str(), nullptr, 10);
+}
+double ResolvedOptions::get_number(const std::string& key) const {
+  return std::strtod(find(key, OptionSpec::Type::Number).text.c_str(), nullptr);
+}
+const std::string& ResolvedOptions::get_choice(const std::string& key) const {
+  return find(key, OptionSpec::Type::Choice).text;
+}
+std::string ResolvedOptions::given() const {
+  std::string out;
+  for (const auto& e : entries)
+    if (e.source != "default") out += fmt::format("{}{}={} ({})", out.empty() ? "" : ", ", e.spec.key, e.text, e.source);
+  return out.empty() ? "defaults" : out;
+}
+
 Result Solver::solve(const Scene& scene, const Discretization& mesh, const Options& options) const {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   Result result;
-  auto finish = [&](Status st, std::string msg) {
-    result.summary.status = st;
-    result.summary.message = std::move(msg);
-  };
+  auto& sum = result.summary;
   try {
     validate(scene);
-    if (options.mass != "consistent" && options.mass != "lumped")
-      throw InputError("command line", "--mass", "must be consistent or lumped (got '" + options.mass + "')");
+    Options opt = options;
+    opt.resolved = resolve_options(*this, scene, options);
+    sum.method_requested = opt.resolved.given();
     const Capability cap = supports(scene);
     // Say exactly which requested quantities this back-end will not compute.
     std::vector<std::string> missing;
@@ -83,19 +216,22 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     const bool wants_something = rq.modes > 0 || !rq.probes.empty() || rq.frf.has_value();
     const bool can_something = (rq.modes > 0 && cap.modes) || (!rq.probes.empty() && cap.statics) || (rq.frf && cap.frf);
     if (!cap.any() || (wants_something && !can_something)) {
-      finish(Status::Unsupported, cap.reason.empty() ? "nothing requested is supported" : cap.reason);
-    } else if (!options.validate_only) {
-      do_solve(scene, mesh, options, result);
+      sum.raise(Status::Unsupported, cap.reason.empty() ? "nothing requested is supported" : cap.reason);
+    } else {
+      do_solve(scene, mesh, opt, result);
       if (!missing.empty()) {
         std::string what;
         for (const auto& m : missing) what += (what.empty() ? "" : ", ") + m;
-        result.summary.warnings.push_back("not computed: " + what + (cap.reason.empty() ? "" : " (" + cap.reason + ")"));
+        sum.warnings.push_back("not computed: " + what + (cap.reason.empty() ? "" : " (" + cap.reason + ")"));
       }
     }
   } catch (const InputError& e) {
-    finish(Status::InvalidInput, e.what());
+    sum.raise(Status::InvalidInput, e.what());
+  } catch (const std::bad_alloc&) {
+    sum.raise(Status::ResourceLimit, std::string(name()) + ": out of memory (std::bad_alloc): the request is too large "
+                                     "for this machine; use a coarser mesh or fewer modes");
   } catch (const std::exception& e) {
-    finish(Status::NumericalIssue, std::string(name()) + " failed: " + e.what());
+    sum.raise(Status::NumericalIssue, std::string(name()) + " failed: " + e.what());
   }
   // Nothing non-finite leaves a solver unflagged.
   bool finite = true;
@@ -103,11 +239,10 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
   for (const auto& d : result.deflections)
     for (double v : {d.u, d.v, d.w, d.theta_x, d.theta_y, d.theta_z}) finite = finite && std::isfinite(v);
   for (const auto& f : result.frf) finite = finite && std::isfinite(std::abs(f.receptance));
-  if (!finite && result.summary.status == Status::Success)
-    finish(Status::NumericalIssue, "non-finite value in the result");
+  if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
   if (result.mode_families.size() != result.frequencies_rad_s.size())
     result.mode_families.resize(result.frequencies_rad_s.size(), ModeFamily::Unknown);
-  result.summary.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
+  sum.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
   return result;
 }
 
@@ -133,6 +268,18 @@ std::vector<const Solver*> Registry::all() const {
   std::vector<const Solver*> v;
   for (auto& s : solvers_) v.push_back(s.get());
   return v;
+}
+
+void Registry::check_backend_tables(const Scene& scene) const {
+  for (const auto& [name, opts] : scene.backend_options) {
+    bool known = false;
+    for (const auto& sv : solvers_) known = known || sv->name() == name;
+    if (!known) {
+      std::string list;
+      for (const auto& sv : solvers_) list += (list.empty() ? "" : ", ") + sv->name();
+      throw InputError(scene.source, "backend." + name, "no such back-end (known: " + list + ")");
+    }
+  }
 }
 
 std::vector<std::string> Registry::names() const {

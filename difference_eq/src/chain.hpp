@@ -6,12 +6,15 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <numbers>
 
 #include "modalbench/difference_eq/vibration.hpp"
 
 namespace modalbench::difference_eq::detail {
 
-/// Node symbol coefficients of a mass model (element units), see vibration.cpp.
+inline constexpr double pi = std::numbers::pi;
+
+/// Node symbol coefficients of a mass model (element units), see chain.cpp.
 struct MassCoeffs {
   double m11_0, m11_1, gm, m22_0, m22_1;
   double Ms[2][2], Md[2][2];

@@ -96,6 +96,17 @@ std::vector<Discretization> DifferenceEqSolver::stress_meshes(const Scene& s) co
   return out;
 }
 
+std::vector<OptionSpec> DifferenceEqSolver::option_specs() const {
+  using T = OptionSpec::Type;
+  return {{"static_method", T::Choice,
+           config_.static_method == StaticMethod::PiecewiseCubic ? "piecewise-cubic" : "eigenfunction-expansion",
+           {"piecewise-cubic", "eigenfunction-expansion"}, 0, 0,
+           "statics: clamped-clamped solution by the closed piecewise cubic (O(R)) or by the paper's eigenfunction "
+           "expansion (7) (O(R^2))"},
+          {"residual_check_max_R", T::Integer, std::to_string(config_.residual_check_max_R), {}, 0, 1e7,
+           "check the closed-form mode shapes against the assembled equations up to this R (O(R) per mode)"}};
+}
+
 void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, const Options& options,
                                   Result& res) const {
   if (mesh.counts.size() != 1)
@@ -105,13 +116,17 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   if (R < 1 || R > RegularBeam::kMaxElements)
     throw InputError("command line", "--mesh",
                      fmt::format("R must satisfy 1 <= R <= {} (got '{}')", RegularBeam::kMaxElements, mesh.spec()));
-  const MassModel mass = mass_model_from_string(options.mass);
+  const MassModel mass = options.mass == modalbench::MassModel::Lumped ? MassModel::Lumped : MassModel::Consistent;
+  const StaticMethod static_method = options.resolved.get_choice("static_method") == "piecewise-cubic"
+                                         ? StaticMethod::PiecewiseCubic
+                                         : StaticMethod::EigenfunctionExpansion;
+  const long residual_check_max_R = options.resolved.get_integer("residual_check_max_R");
   Timer timer;
   auto& sum = res.summary;
   const RegularBeam beam = beam_of(s, R);
   const double L = beam.L;
   const int held = std::isinf(beam.k0) + std::isinf(beam.r0) + std::isinf(beam.kL) + std::isinf(beam.rL);
-  sum.dofs = 2 * (R + 1) - held;
+  sum.unknowns = 2 * (R + 1) - held;
 
   // Loads must sit on nodes.
   std::vector<NodalLoad> loads;
@@ -134,7 +149,7 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
       "modes: {} mass, 4x4 characteristic determinant in the difference-equation roots (scaled cosh/sinh) "
       "+ Wittrick-Williams count, Brent; statics: clamped-clamped {} + 4x4 spring superposition (closed form); "
       "checks: count at omega^2 (1 -+ 1e-8) per mode, assembled residuals (statics; mode shapes for R <= {})",
-      R, to_string(mass), to_string(config_.static_method), config_.residual_check_max_R);
+      R, to_string(mass), to_string(static_method), residual_check_max_R);
   if (s.theory == Theory::Timoshenko)
     sum.warnings.push_back("Euler-Bernoulli model used for a Timoshenko scene: shear deformation and rotary "
                            "inertia are neglected");
@@ -144,11 +159,14 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   if (other_components)
     sum.warnings.push_back("load components other than Fz and My are ignored (bending in x-z only)");
 
+  sum.timings_s.build += timer.lap();
+
   // Free vibration.
   const int k = s.request.modes;
   if (k > 0) {
     const Spectrum sp = natural_frequencies(beam, mass, k);
-    sum.iterations += sp.count_evaluations + sp.determinant_evaluations;
+    sum.set_diagnostic("count_evaluations", static_cast<double>(sp.count_evaluations));
+    sum.set_diagnostic("determinant_evaluations", static_cast<double>(sp.determinant_evaluations));
     for (std::size_t i = 0; i < sp.omega_rad_s.size(); ++i) {
       res.frequencies_rad_s.push_back(sp.omega_rad_s[i]);
       res.mode_families.push_back(static_cast<int>(i) < sp.rigid ? ModeFamily::Rigid : ModeFamily::BendingXZ);
@@ -156,7 +174,6 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
     if (static_cast<int>(sp.omega_rad_s.size()) < k)
       sum.warnings.push_back(fmt::format("the model has only {} natural frequencies ({} mass, R={}); {} requested",
                                          sp.available, to_string(mass), R, k));
-    sum.timings_s.emplace_back("frequencies", timer.lap());
     // Checks. Every frequency is confirmed by the exact count just below and above it (O(1)
     // each; 1e-8 relative: near a mechanism the count resolves a near-rigid mode only to about
     // eps / K, K the dimensionless spring); for R up to residual_check_max_R the closed-form mode
@@ -167,31 +184,30 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
       const long below = count_below(beam, mass, l * (1.0 - 1e-8)), above = count_below(beam, mass, l * (1.0 + 1e-8));
       if (below > static_cast<long>(i) || above < static_cast<long>(i) + 1) ++unconfirmed;
     }
-    sum.max_residual = std::max(sum.max_residual, sp.max_bracket);
-    if (unconfirmed > 0) {
-      sum.status = Status::NumericalIssue;
-      sum.message = fmt::format("{} frequency(ies) not confirmed by the mode count at omega^2 (1 -+ 1e-8)", unconfirmed);
-    }
-    if (R <= config_.residual_check_max_R) {
+    sum.set_diagnostic("root_bracket_relative", sp.max_bracket);
+    if (unconfirmed > 0)
+      sum.raise(Status::NumericalIssue,
+                fmt::format("{} frequency(ies) not confirmed by the mode count at omega^2 (1 -+ 1e-8)", unconfirmed));
+    if (R <= residual_check_max_R) {
       double worst = 0;
       for (std::size_t i = sp.rigid; i < sp.omega_rad_s.size(); ++i) {
         const ModeShape u = mode_shape(beam, mass, sp.omega_rad_s[i]);
         worst = std::max(worst, eigen_residual(beam, mass, sp.omega_rad_s[i], u));
       }
-      sum.max_residual = std::max(sum.max_residual, worst);
+      sum.note_backward_error(worst);
     }
-    sum.timings_s.emplace_back("frequency checks", timer.lap());
+    sum.timings_s.modes += timer.lap();
   }
 
   // Statics at the probes.
   if (!s.request.probes.empty()) {
     StaticSolution st;
     try {
-      st = solve_static(beam, loads, config_.static_method);
+      st = solve_static(beam, loads, static_method);
     } catch (const Mechanism& e) {
-      sum.status = Status::InvalidInput;
-      sum.message = InputError(s.source, "supports", std::string("static solve impossible: ") + e.what()).what();
-      sum.timings_s.emplace_back("statics", timer.lap());
+      sum.raise(Status::InvalidInput,
+                InputError(s.source, "supports", std::string("static solve impossible: ") + e.what()).what());
+      sum.timings_s.statics += timer.lap();
       return;
     }
     int between = 0;
@@ -215,10 +231,9 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
                                          "values (exact for nodal loads, the element being unloaded)",
                                          between));
     for (const auto& w : st.warnings) sum.warnings.push_back(w);
-    sum.condition_estimate = st.support_condition;
-    sum.timings_s.emplace_back("statics", timer.lap());
-    sum.max_residual = std::max(sum.max_residual, static_residual(beam, loads, st));
-    sum.timings_s.emplace_back("static residual check", timer.lap());
+    sum.set_diagnostic("support_condition", st.support_condition);
+    sum.note_backward_error(static_residual(beam, loads, st));
+    sum.timings_s.statics += timer.lap();
   }
 }
 

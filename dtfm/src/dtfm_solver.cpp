@@ -32,20 +32,46 @@ std::vector<Discretization> DtfmSolver::stress_meshes(const Scene& scene) const 
   return {mesh_ladder(scene).back()};
 }
 
+std::vector<OptionSpec> DtfmSolver::option_specs() const {
+  using T = OptionSpec::Type;
+  const SolveControls c;
+  auto num = [](double v) { return fmt::format("{}", v); };
+  return {
+      {"layers", T::Choice, to_string(options_.layers), {"consistent", "staggered", "paper"}, 0, 0,
+       "spring layers between prisms: consistent (Eq. (25) springs + cross terms), staggered, or paper (Eq. (25) "
+       "as printed)"},
+      {"kirchhoff_penalty", T::Number, num(options_.kirchhoff_penalty), {}, 1e-3, 1e6,
+       "Kirchhoff plates: layer shear penalty in units of 12 D / dy^3"},
+      {"rel_tol", T::Number, num(c.rel_tol), {}, 1e-15, 1e-3, "relative tolerance on omega^2"},
+      {"im_h", T::Number, num(c.im_h), {}, 1e-3, 3.0, "base pieces: bound on |Im p| h"},
+      {"re_h", T::Number, num(c.re_h), {}, 1e-3, 20.0, "base pieces: bound on |Re p| h"},
+      {"family_threshold", T::Number, num(c.family_threshold), {}, 0.0, 1.0,
+       "beam modes are labelled by family when the rigid-section share of kinetic energy reaches this"},
+  };
+}
+
 void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
                           Result& r) const {
   Timer timer;
-  const PrismModel model = build_model(scene, mesh, options_);
+  const ResolvedOptions& o = options.resolved;
+  ModelOptions mo = options_;
+  const std::string& layers = o.get_choice("layers");
+  mo.layers = layers == "paper" ? LayerModel::Paper : layers == "staggered" ? LayerModel::Staggered : LayerModel::Consistent;
+  mo.kirchhoff_penalty = o.get_number("kirchhoff_penalty");
+  SolveControls controls;
+  controls.rel_tol = o.get_number("rel_tol");
+  controls.im_h = o.get_number("im_h");
+  controls.re_h = o.get_number("re_h");
+  controls.family_threshold = o.get_number("family_threshold");
+  const PrismModel model = build_model(scene, mesh, mo);
   auto& sum = r.summary;
   sum.method = "dtfm: " + model.description +
                "; segment dynamic stiffness, Wittrick-Williams count with Brent polish";
   // Modelling notes (not doubts about the numbers) belong to the method, not the warnings.
   for (const auto& n : model.notes) sum.method += "; " + n;
-  sum.dofs = model.m;
-  if (options.mass == "lumped")
+  sum.set_diagnostic("fields", model.m);
+  if (options.mass == MassModel::Lumped)
     sum.warnings.push_back("--mass lumped does not apply: the prisms' mass is distributed (consistent) along x");
-  if (options.frf_modes > 0)
-    sum.warnings.push_back("frf_modes ignored: dtfm computes every FRF sample by a direct dynamic-stiffness solve");
   // A modelling note as well: the scene's theory names what `exact` solves; the prism model is
   // its own model of the section, as for the 3D references.
   if (scene.is_beam() && scene.theory == Theory::EulerBernoulli && (model.nz > 1 || model.ny > 1))
@@ -54,8 +80,8 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
         "beam as a whole carries shear deformation (like a Timoshenko or 3D model) and its higher bending modes lie "
         "below the Euler-Bernoulli values (use --mesh 1x1 for the Euler-Bernoulli beam itself)",
         model.ny, model.nz);
-  LineAnalysis la(model);
-  sum.timings_s.emplace_back("build", timer.lap());
+  LineAnalysis la(model, controls);
+  sum.timings_s.build += timer.lap();
 
   const int k = scene.request.modes;
   if (k > 0) {
@@ -69,25 +95,19 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
     if (unknown)
       sum.warnings.push_back(fmt::format(
           "{} mode(s) labelled unknown: their rigid-section share of kinetic energy is below one half", unknown));
-    if (!ml.count_consistent) {
-      sum.status = Status::NumericalIssue;
-      sum.message = "dtfm: " + ml.count_message;
-    }
-    if (static_cast<int>(ml.omega_rad_s.size()) < k) {
-      sum.status = Status::NotConverged;
-      sum.message = fmt::format("dtfm: only {} of {} modes found", ml.omega_rad_s.size(), k);
-    }
-    sum.timings_s.emplace_back("frequencies", timer.lap());
+    if (!ml.count_consistent) sum.raise(Status::NumericalIssue, "dtfm: " + ml.count_message);
+    if (static_cast<int>(ml.omega_rad_s.size()) < k)
+      sum.raise(Status::NotConverged, fmt::format("dtfm: only {} of {} modes found", ml.omega_rad_s.size(), k));
+    sum.timings_s.modes += timer.lap();
   }
   if (!scene.request.probes.empty()) {
     try {
       r.deflections = la.statics(scene.loads, scene.request.probes);
     } catch (const std::runtime_error& e) {
       r.deflections.clear();
-      sum.status = Status::InvalidInput;
-      sum.message = scene.source + ": supports: static solve impossible: " + e.what();
+      sum.raise(Status::InvalidInput, scene.source + ": supports: static solve impossible: " + e.what());
     }
-    sum.timings_s.emplace_back("statics", timer.lap());
+    sum.timings_s.statics += timer.lap();
   }
   if (scene.request.frf) {
     const auto& f = *scene.request.frf;
@@ -99,10 +119,11 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
       if (std::isfinite(std::abs(H[i]))) r.frf.push_back({omegas[i], H[i]});
     if (skipped)
       sum.warnings.push_back(fmt::format("FRF: {} sample(s) on a natural frequency omitted", skipped));
-    sum.timings_s.emplace_back("frf", timer.lap());
+    sum.timings_s.frf += timer.lap();
   }
-  sum.iterations = la.evaluations();
-  sum.max_residual = la.max_asymmetry();
+  sum.set_diagnostic("count_evaluations", static_cast<double>(la.evaluations()));
+  sum.set_diagnostic("segment_asymmetry", la.max_asymmetry());
+  sum.unknowns = la.max_unknowns();
   if (la.max_asymmetry() > 1e-6)
     sum.warnings.push_back(fmt::format("segment matrices asymmetric to {:.2e}: the state matrices are not "
                                        "Hamiltonian to working precision",

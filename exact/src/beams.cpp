@@ -71,8 +71,13 @@ struct BarLine {
   }
 };
 
+void note_unknowns(long* unknowns, const AssembledLine& a) {
+  if (unknowns) *unknowns = std::max<long>(*unknowns, a.K.free_dofs());
+}
+
 Frequencies to_frequencies(const LineSpectrum& spec, const SliceStats& st) {
   Frequencies f;
+  f.unknowns = st.max_unknowns;
   f.rigid = spec.rigid;
   f.count_evaluations = st.count_evaluations;
   for (double lam : spec.lambdas) f.omega_rad_s.push_back(std::sqrt(std::max(lam, 0.0)));
@@ -104,7 +109,7 @@ Frequencies bar_frequencies(const Bar& bar, double k_left, double k_right, int k
 
 std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings left, EndSprings right,
                                          const std::vector<LineLoad>& loads, const std::vector<double>& probes,
-                                         double moment_sign) {
+                                         double moment_sign, long* unknowns) {
   if (!bending_restrained(left, right))
     throw std::runtime_error(
         "mechanism: the end supports do not restrain rigid translation and rotation in bending "
@@ -114,6 +119,7 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
   for (auto& p : loads) line.sys.nodes_at.push_back(p.x / L);
   for (double x : probes) line.sys.nodes_at.push_back(x / L);
   AssembledLine asmb = assemble(line.sys, 0.0);
+  note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
   for (auto& p : loads) {
     const int n = asmb.node_at(p.x / L);
@@ -130,13 +136,14 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
 }
 
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
-                               const std::vector<double>& probes) {
+                               const std::vector<double>& probes, long* unknowns) {
   if (!(k_left > 0 || k_right > 0))
     throw std::runtime_error("mechanism: neither end restrains the bar (axial or torsional rigid motion)");
   BarLine line(bar, k_left, k_right);
   for (auto& p : loads) line.sys.nodes_at.push_back(p.x / bar.L);
   for (double x : probes) line.sys.nodes_at.push_back(x / bar.L);
   AssembledLine asmb = assemble(line.sys, 0.0);
+  note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes());
   for (auto& p : loads) f[asmb.node_at(p.x / bar.L)] += p.force * bar.L / bar.S;
   const Eigen::VectorXd d = asmb.K.solve(f);
@@ -146,10 +153,11 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
 }
 
 double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
-                       double omega) {
+                       double omega, long* unknowns) {
   BendingLine line(beam, left, right);
   line.sys.nodes_at = {excite / beam.L, observe / beam.L};
   AssembledLine asmb = assemble(line.sys, omega * omega);
+  note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
   f[2 * asmb.node_at(excite / beam.L)] = beam.L * beam.L / beam.EI;
   const Eigen::VectorXd d = asmb.K.solve(f);

@@ -51,22 +51,30 @@ Bar torsion_bar(const Scene& s) {
   return {s.material.G * sec.J, s.material.rho * sec.Ip, s.geometry.length};
 }
 
+/// Count evaluations and the largest dynamic stiffness factorized.
+void note(Result& r, const Frequencies& f) {
+  r.summary.set_diagnostic("count_evaluations", std::max(0.0, r.summary.diagnostic("count_evaluations")) +
+                                                    static_cast<double>(f.count_evaluations));
+  r.summary.unknowns = std::max(r.summary.unknowns, f.unknowns);
+}
+
 void beam_modes(const Scene& s, ModeList& list, Result& r) {
   const int k = s.request.modes;
   auto fxz = beam_bending_frequencies(bending_xz(s), bend(s.x0), bend(s.xL), k);
   list.add(fxz, ModeFamily::BendingXZ);
-  r.summary.iterations += fxz.count_evaluations;
+  note(r, fxz);
   if (s.physics != Physics::Bending) {
     auto fa = bar_frequencies(axial_bar(s), s.x0.axial, s.xL.axial, k);
     list.add(fa, ModeFamily::Axial);
-    r.summary.iterations += fa.count_evaluations;
+    note(r, fa);
   }
   if (s.physics == Physics::Spatial) {
     auto fxy = beam_bending_frequencies(bending_xy(s), bend(s.x0), bend(s.xL), k);
     list.add(fxy, ModeFamily::BendingXY);
     auto ft = bar_frequencies(torsion_bar(s), s.x0.torsional, s.xL.torsional, k);
     list.add(ft, ModeFamily::Torsion);
-    r.summary.iterations += fxy.count_evaluations + ft.count_evaluations;
+    note(r, fxy);
+    note(r, ft);
   }
 }
 
@@ -83,18 +91,19 @@ void beam_statics(const Scene& s, Result& r) {
       ly.push_back({p.x, p.Fy, p.Mz});
       lt.push_back({p.x, p.Mx, 0});
     }
-    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0);
+    long& n = r.summary.unknowns;
+    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n);
     for (std::size_t i = 0; i < xs.size(); ++i) {
       defl[i].w = wz[i].w;
       defl[i].theta_y = wz[i].theta;
     }
     if (s.physics != Physics::Bending) {
-      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs);
+      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n);
       for (std::size_t i = 0; i < xs.size(); ++i) defl[i].u = u[i];
     }
     if (s.physics == Physics::Spatial) {
-      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0);
-      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs);
+      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n);
+      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n);
       for (std::size_t i = 0; i < xs.size(); ++i) {
         defl[i].v = wy[i].w;
         defl[i].theta_z = wy[i].theta;
@@ -103,8 +112,7 @@ void beam_statics(const Scene& s, Result& r) {
     }
     r.deflections = defl;
   } catch (const std::runtime_error& e) {
-    r.summary.status = Status::InvalidInput;
-    r.summary.message = s.source + ": supports: static solve impossible: " + e.what();
+    r.summary.raise(Status::InvalidInput, s.source + ": supports: static solve impossible: " + e.what());
   }
 }
 
@@ -117,7 +125,7 @@ void beam_frf(const Scene& s, Result& r) {
   for (int i = 0; i < f.points; ++i) {
     const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
     try {
-      r.frf.push_back({w, beam_receptance(b, bend(s.x0), bend(s.xL), f.excite[0], f.observe[0], w)});
+      r.frf.push_back({w, beam_receptance(b, bend(s.x0), bend(s.xL), f.excite[0], f.observe[0], w, &r.summary.unknowns)});
     } catch (const std::runtime_error&) {
       ++skipped;  // omega sits on a natural frequency (or 0 for a mechanism): no finite receptance
     }
@@ -129,15 +137,15 @@ void solve_beam(const Scene& s, ModeList& list, Result& r, Timer& timer) {
   r.summary.method = fmt::format("exact {} beam: dynamic stiffness + Wittrick-Williams count", to_string(s.theory));
   if (s.request.modes > 0) {
     beam_modes(s, list, r);
-    r.summary.timings_s.emplace_back("frequencies", timer.lap());
+    r.summary.timings_s.modes += timer.lap();
   }
   if (!s.request.probes.empty()) {
     beam_statics(s, r);
-    r.summary.timings_s.emplace_back("statics", timer.lap());
+    r.summary.timings_s.statics += timer.lap();
   }
   if (s.request.frf) {
     beam_frf(s, r);
-    r.summary.timings_s.emplace_back("frf", timer.lap());
+    r.summary.timings_s.frf += timer.lap();
   }
 }
 
@@ -159,14 +167,14 @@ void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
       r.summary.method = "exact Kirchhoff plate, Levy (x-edges simply supported): dynamic stiffness + count";
       auto f = levy_frequencies(a, b, D, m.nu, rho_h, bend(s.y0), bend(s.yB), k);
       list.add(f.omega_rad_s, 0, ModeFamily::Plate);
-      r.summary.iterations = f.count_evaluations;
+      note(r, f);
       break;
     }
     case PlateMethod::LevyTransposed: {
       r.summary.method = "exact Kirchhoff plate, Levy (y-edges simply supported): dynamic stiffness + count";
       auto f = levy_frequencies(b, a, D, m.nu, rho_h, bend(s.x0), bend(s.xL), k);
       list.add(f.omega_rad_s, 0, ModeFamily::Plate);
-      r.summary.iterations = f.count_evaluations;
+      note(r, f);
       break;
     }
     case PlateMethod::None: break;
@@ -175,14 +183,14 @@ void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
 
 // Truncations: statics to m, n <= 2000, FRF to m, n <= 300; the tail estimates are checked
 // (FRF: against the static flexibility of the same pair, since |H| vanishes at anti-resonances).
-void navier_statics(const Scene& s, Result& r) {
+void navier_statics(const Scene& s, int terms, Result& r) {
   const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
   std::vector<std::array<double, 3>> forces;
   for (const auto& p : s.loads) forces.push_back({p.x, p.y, p.Fz});
   double scale = 0, worst_tail = 0;
   for (const auto& p : s.request.probes) {
     double tail = 0;
-    const auto w = navier_static(a, b, D, forces, p[0], p[1], 2000, &tail);
+    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail);
     Deflection d;
     d.position = p;
     d.w = w[0];
@@ -194,48 +202,49 @@ void navier_statics(const Scene& s, Result& r) {
   }
   if (scale > 0 && worst_tail > 1e-5 * scale)
     r.summary.warnings.push_back(fmt::format(
-        "Navier static series truncated at 2000 x 2000 terms: estimated relative error {:.1e}", worst_tail / scale));
-  r.summary.max_residual = std::max(r.summary.max_residual, scale > 0 ? worst_tail / scale : 0.0);
+        "Navier static series truncated at {0} x {0} terms: estimated relative error {1:.1e}", terms, worst_tail / scale));
+  r.summary.set_diagnostic("static_series_tail_relative", scale > 0 ? worst_tail / scale : 0.0);
 }
 
-void navier_frf(const Scene& s, Result& r) {
+void navier_frf(const Scene& s, int terms, Result& r) {
   const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
   const double rho_h = s.material.rho * s.geometry.height;
   const auto& f = *s.request.frf;
   double worst = 0;
   const double flex = std::abs(
-      navier_receptance(a, b, D, rho_h, 0.0, f.excite[0], f.excite[1], f.observe[0], f.observe[1], 0.0, 300));
+      navier_receptance(a, b, D, rho_h, 0.0, f.excite[0], f.excite[1], f.observe[0], f.observe[1], 0.0, terms));
   for (int i = 0; i < f.points; ++i) {
     const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
     double tail = 0;
     const auto rec = navier_receptance(a, b, D, rho_h, s.material.loss_factor, f.excite[0], f.excite[1],
-                                       f.observe[0], f.observe[1], w, 300, &tail);
+                                       f.observe[0], f.observe[1], w, terms, &tail);
     if (!std::isfinite(std::abs(rec))) continue;  // exactly on an undamped resonance
     r.frf.push_back({w, rec});
     worst = std::max(worst, tail);
   }
+  r.summary.set_diagnostic("frf_series_tail_relative_to_flexibility", flex > 0 ? worst / flex : 0.0);
   if (flex > 0 && worst > 1e-3 * flex)
     r.summary.warnings.push_back(fmt::format(
-        "Navier FRF series truncated at 300 x 300 terms: estimated error up to {:.1e} of the static flexibility",
-        worst / flex));
+        "Navier FRF series truncated at {0} x {0} terms: estimated error up to {1:.1e} of the static flexibility",
+        terms, worst / flex));
 }
 
-void solve_plate(const Scene& s, ModeList& list, Result& r, Timer& timer) {
+void solve_plate(const Scene& s, const Options& o, ModeList& list, Result& r, Timer& timer) {
   std::string why;
   const PlateMethod pm = plate_method(s, why);
   if (s.request.modes > 0) {
     if (pm == PlateMethod::None) throw std::runtime_error(why);
     plate_modes(s, pm, list, r);
-    r.summary.timings_s.emplace_back("frequencies", timer.lap());
+    r.summary.timings_s.modes += timer.lap();
   }
   if (pm != PlateMethod::Navier) return;
   if (!s.request.probes.empty()) {
-    navier_statics(s, r);
-    r.summary.timings_s.emplace_back("statics", timer.lap());
+    navier_statics(s, static_cast<int>(o.resolved.get_integer("navier_static_terms")), r);
+    r.summary.timings_s.statics += timer.lap();
   }
   if (s.request.frf) {
-    navier_frf(s, r);
-    r.summary.timings_s.emplace_back("frf", timer.lap());
+    navier_frf(s, static_cast<int>(o.resolved.get_integer("navier_frf_terms")), r);
+    r.summary.timings_s.frf += timer.lap();
   }
 }
 
@@ -257,14 +266,20 @@ Capability ExactSolver::supports(const Scene& s) const {
   return c;
 }
 
-void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Options&, Result& r) const {
+std::vector<OptionSpec> ExactSolver::option_specs() const {
+  using T = OptionSpec::Type;
+  return {{"navier_static_terms", T::Integer, "2000", {}, 10, 20000,
+           "Navier plate statics: terms m, n <= this (the driving point converges like terms^-2)"},
+          {"navier_frf_terms", T::Integer, "300", {}, 10, 5000, "Navier plate FRF: terms m, n <= this"}};
+}
+
+void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const {
   if (!mesh.counts.empty())
     throw InputError("command line", "--mesh", "the exact back-end has no mesh (got '" + mesh.spec() + "')");
   Timer timer;
-  r.summary.dofs = 0;
   ModeList list;
   if (s.is_beam()) solve_beam(s, list, r, timer);
-  else solve_plate(s, list, r, timer);
+  else solve_plate(s, o, list, r, timer);
   auto& modes = list.modes;
   std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.first < y.first; });
   if (static_cast<int>(modes.size()) > s.request.modes) modes.resize(s.request.modes);

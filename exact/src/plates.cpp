@@ -155,20 +155,23 @@ Frequencies levy_frequencies(double a, double b, double D, double nu, double rho
     };
     return sys;
   };
+  SliceStats st;
   // Strips whose (1 - nu^2) D k^4 exceeds rho h omega^2 have no mode below omega.
   auto count = [&](double lambda) {
     int total = 0;
     for (int m = 1;; ++m) {
       const double km = m * pi / a;
       if ((1 - nu * nu) * D * std::pow(km, 4) >= rho_h * lambda) break;
-      total += count_below(strip(m), lambda);
+      const AssembledLine asmb = assemble(strip(m), lambda);
+      st.max_unknowns = std::max<long>(st.max_unknowns, asmb.K.free_dofs());
+      total += asmb.K.inertia().negative;
     }
     return total;
   };
-  SliceStats st;
   const double hint = D / (rho_h * std::pow(std::min(a, b), 4));
   for (double lam : slice_spectrum(count, k, 0.0, hint, 1e-13, &st)) result.omega_rad_s.push_back(std::sqrt(lam));
   result.count_evaluations = st.count_evaluations;
+  result.unknowns = st.max_unknowns;
   return result;
 }
 

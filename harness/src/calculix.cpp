@@ -207,8 +207,7 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
   r.summary.method = fmt::format("CalculiX C3D20R {}x{}x{} (20-node bricks, reduced integration)", m.nx, m.ny, m.nz);
   const std::string why = calculix_unsupported_reason(s);
   if (!why.empty()) {
-    r.summary.status = Status::Unsupported;
-    r.summary.message = why;
+    r.summary.raise(Status::Unsupported, why);
     return rec;
   }
   fs::create_directories(work_dir);
@@ -280,7 +279,7 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
   const int k = std::max(1, s.request.modes) * (s.is_beam() ? 3 : 2) + 4;
   inp << fmt::format("*STEP\n*FREQUENCY\n{}\n*NODE PRINT, NSET=NALL\nU\n*END STEP\n", k);
   std::ofstream(fs::path(work_dir) / (name + ".inp")) << inp.str();
-  r.summary.dofs = 3L * n_nodes - held;
+  r.summary.unknowns = 3L * n_nodes - held;
 
   const auto t0 = std::chrono::steady_clock::now();
   int st = 0;
@@ -288,11 +287,10 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
       run_command(fmt::format("cd '{}' && OMP_NUM_THREADS=1 '{}' -i '{}' > '{}.log'", work_dir, exe, name, name), st);
   rec.median_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.summary.total_time_s = rec.median_s;
-  r.summary.timings_s.emplace_back("ccx", rec.median_s);
+  r.summary.timings_s.modes = rec.median_s;  // one ccx run computes the modes only
   std::ifstream dat(fs::path(work_dir) / (name + ".dat"));
   if (st != 0 || !dat) {
-    r.summary.status = Status::NumericalIssue;
-    r.summary.message = fmt::format("ccx failed (status {}); see {}/{}.log", st, work_dir, name);
+    r.summary.raise(Status::NumericalIssue, fmt::format("ccx failed (status {}); see {}/{}.log", st, work_dir, name));
     return rec;
   }
   // Parse the eigenvalue table, then one displacement block per mode.
@@ -321,14 +319,13 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
     }
   }
   if (omega.empty() || shapes.size() != omega.size()) {
-    r.summary.status = Status::NumericalIssue;
-    r.summary.message = fmt::format("could not read {} frequencies and shapes from {}.dat", omega.size(), name);
+    r.summary.raise(Status::NumericalIssue, fmt::format("could not read {} frequencies and shapes from {}.dat", omega.size(), name));
     return rec;
   }
   const auto fam = classify(s, g, shapes, omega);
   r.frequencies_rad_s = omega;
   r.mode_families = fam;
-  r.summary.iterations = static_cast<long>(omega.size());
+  r.summary.set_diagnostic("ccx_modes_read", static_cast<double>(omega.size()));
   return rec;
 }
 

@@ -50,7 +50,7 @@ void write_runs_csv(const std::string& path, const std::vector<SceneComparison>&
   for (const auto& c : all)
     for (const auto& r : c.runs) {
       const auto& s = r.result.summary;
-      csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), s.dofs,
+      csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), s.unknowns,
                          to_string(s.status), r.median_s, r.repeats, r.max_frequency_error, r.deflection_error,
                          r.frf_error_db, c.reference.source);
     }

@@ -29,8 +29,8 @@ void write_error_charts(Doc& doc, const SceneComparison& c, Context& ctx, const 
     for (const auto& r : c.runs)
       if (r.backend == b && !r.failed() && std::isfinite(r.max_frequency_error) && r.max_frequency_error > 0) {
         st.points.emplace_back(r.median_s, r.max_frequency_error);
-        if (r.result.summary.dofs > 0)
-          sd.points.emplace_back(static_cast<double>(r.result.summary.dofs), r.max_frequency_error);
+        if (r.result.summary.unknowns > 0)
+          sd.points.emplace_back(static_cast<double>(r.result.summary.unknowns), r.max_frequency_error);
       }
     vs_time.push_back(st);
     vs_dofs.push_back(sd);
@@ -56,7 +56,7 @@ void write_runs_table(Doc& doc, const SceneComparison& c) {
     std::string msg = s.message;
     if (msg.empty() && !s.warnings.empty()) msg = fmt::format("{} warning(s): {}", s.warnings.size(), s.warnings.front());
     if (r.matched_by_order) msg = "modes matched by order (no family labels). " + msg;
-    rows.push_back({r.backend, r.mesh.spec(), std::to_string(s.dofs), to_string(s.status),
+    rows.push_back({r.backend, r.mesh.spec(), std::to_string(s.unknowns), to_string(s.status),
                     fmt::format("{} (x{})", num_str(r.median_s), r.repeats), err_str(r.max_frequency_error),
                     err_str(r.deflection_error),
                     std::isfinite(r.frf_error_db) ? fmt::format("{:.2f}", r.frf_error_db) : "—", msg.substr(0, 160)});

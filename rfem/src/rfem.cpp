@@ -16,22 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-class Phases {
- public:
-  explicit Phases(Result& r) : r_(r) {}
-  void add(const std::string& phase, double s) {
-    for (auto& [name, t] : r_.summary.timings_s)
-      if (name == phase) {
-        t += s;
-        return;
-      }
-    r_.summary.timings_s.emplace_back(phase, s);
-  }
-
- private:
-  Result& r_;
-};
-
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string mesh_source(const Scene& s) { return s.source.empty() ? "command line" : s.source; }
@@ -46,13 +30,27 @@ bool complete_spectrum_pays(const System& sys, std::size_t samples) {
   return sys.C.nonZeros() == 0 && samples >= 20 && sys.n() - sys.m() <= 600 && sys.n() <= 1500;
 }
 
-void set_status(Result& r, Status st, const std::string& msg) {
-  if (r.summary.status == Status::Success) {
-    r.summary.status = st;
-    r.summary.message = msg;
-  } else {
-    r.summary.message += "; " + msg;
+/// max over columns of sum |K_ij| (the matrix 1-norm, for normwise backward errors).
+double norm1(const SpMat& K) {
+  double best = 0;
+  for (int j = 0; j < K.outerSize(); ++j) {
+    double c = 0;
+    for (SpMat::InnerIterator it(K, j); it; ++it) c += std::abs(it.value());
+    best = std::max(best, c);
   }
+  return best;
+}
+
+ModeOptions mode_options(const ResolvedOptions& o, int modes) {
+  ModeOptions mo;
+  mo.modes = modes;
+  const std::string& e = o.get_choice("eigen");
+  mo.method = e == "dense" ? EigenMethod::Dense : e == "shift-invert" ? EigenMethod::ShiftInvert : EigenMethod::Auto;
+  mo.dense_limit = o.get_integer("dense_limit");
+  mo.tolerance = o.get_number("tolerance");
+  mo.sturm_check = o.get_bool("sturm_check");
+  mo.seed = static_cast<unsigned>(o.get_integer("seed"));
+  return mo;
 }
 
 }  // namespace
@@ -95,7 +93,29 @@ std::vector<Discretization> RfemSolver::stress_meshes(const Scene& s) const {
             std::max(2, static_cast<int>(std::lround(100.0 * b / longest)))}}};
 }
 
-Model RfemSolver::build(const Scene& s, const Discretization& mesh) {
+std::vector<OptionSpec> RfemSolver::option_specs() const {
+  using T = OptionSpec::Type;
+  return {
+      {"eigen", T::Choice, "auto", {"auto", "dense", "shift-invert"}, 0, 0,
+       "eigensolver: dense (complete, refined) or Lanczos in shift-invert mode; auto picks by size"},
+      {"dense_limit", T::Integer, "600", {}, 1, 1e6, "auto: the dense path up to this many coordinates"},
+      {"tolerance", T::Number, "1e-10", {}, 1e-15, 1e-3, "Lanczos relative tolerance"},
+      {"sturm_check", T::Bool, "true", {}, 0, 0,
+       "count the eigenvalues below the last mode by an LDL' inertia (on a second core) to prove none is missed"},
+      {"seed", T::Integer, "20240917", {}, 0, 4294967295.0, "Lanczos start vector"},
+      {"frf_modes", T::Integer, "0", {}, 0, 1e6,
+       "0: FRF by direct solves (or the complete spectral decomposition of small models); N > 0: modal "
+       "superposition over N modes (truncated: an approximation)"},
+      {"beam_rigid_shear", T::Choice, "multipliers", {"multipliers", "joint-coordinates"}, 0, 0,
+       "Euler-Bernoulli beams: rigid shear springs as constraints with multipliers, or by joint coordinates"},
+      {"plate_rigid_shear", T::Choice, "corner-coordinates", {"corner-coordinates", "multipliers"}, 0, 0,
+       "Kirchhoff plates: rigid transverse shear by corner-value coordinates, or constraints with multipliers"},
+      {"plate_bending_correction", T::Bool, "true", {}, 0, 0,
+       "plates: per-fragment Poisson coupling and Mindlin twist form (false: Table A1.1 springs as printed)"},
+  };
+}
+
+Model RfemSolver::build(const Scene& s, const Discretization& mesh, const ResolvedOptions* options) {
   const std::string src = mesh_source(s);
   if (s.is_beam()) {
     if (mesh.counts.size() != 1)
@@ -104,7 +124,10 @@ Model RfemSolver::build(const Scene& s, const Discretization& mesh) {
     const int n = mesh.counts[0];
     if (n < 1) throw InputError(src, "--mesh", fmt::format("a beam needs N >= 1 segments (got {})", n));
     if (n > 2000000) throw InputError(src, "--mesh", fmt::format("N = {} exceeds the limit of 2000000 segments", n));
-    return build_beam(s, n);
+    BeamOptions bo;
+    if (options && options->get_choice("beam_rigid_shear") == "joint-coordinates")
+      bo.rigid_shear = RigidShear::JointCoordinates;
+    return build_beam(s, n, bo);
   }
   if (mesh.counts.size() != 2)
     throw InputError(src, "--mesh",
@@ -117,168 +140,188 @@ Model RfemSolver::build(const Scene& s, const Discretization& mesh) {
   PlateOptions po;
   po.nx = nx;
   po.ny = ny;
+  if (options) {
+    po.rigid_shear = options->get_choice("plate_rigid_shear") == "multipliers" ? RigidShear::Multipliers
+                                                                               : RigidShear::JointCoordinates;
+    po.bending_correction = options->get_bool("plate_bending_correction");
+  }
   return build_plate(s, po);
 }
 
 void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Options& options, Result& r) const {
-  Phases phases(r);
+  auto& sum = r.summary;
+  const ResolvedOptions& opt = options.resolved;
   auto t0 = Clock::now();
-  const Model model = build(s, mesh);
+  const Model model = build(s, mesh, &opt);
   const System sys = assemble(model);
-  phases.add("assembly", since(t0));
-  r.summary.dofs = sys.n();
+  sum.timings_s.build = since(t0);
+  sum.unknowns = sys.n() + sys.m();
   if (sys.n() == 0)
     throw InputError(mesh_source(s), "--mesh",
                      fmt::format("mesh {} is so coarse that the supports hold every DOF: refine it", mesh.spec()));
+  sum.set_diagnostic("coordinates", static_cast<double>(sys.n()));
+  sum.set_diagnostic("multipliers", static_cast<double>(sys.m()));
 
   std::string method = fmt::format(
       "rfem (lumped): {}; {} coordinates ({} held by rigid supports eliminated{}); mass: diagonal RFE mass "
       "(--mass {} does not apply); probes: (bi)linear interpolation of the motion of the RFE centres around P "
-      "(second order, as the centres); loads: its transpose (the action shared by the same weights)",
+      "(second order, as the centres) plus the point action's singular response in closed form; loads: the "
+      "transpose (the action shared by the same weights)",
       model.description, sys.n(), sys.held,
       sys.m() > 0 ? fmt::format(", {} rigid-link constraints as multipliers{}", sys.m(),
                                 sys.redundant > 0 ? fmt::format(", {} dependent ones dropped", sys.redundant) : "")
                   : "",
-      options.mass);
+      to_string(options.mass));
 
   // Modes (also the basis of a modal FRF).
   const int k = s.request.modes;
-  const bool modal_frf = s.request.frf.has_value() && options.frf_modes > 0;
-  const int k_solve = std::max(k, modal_frf ? options.frf_modes : 0);
+  const int frf_modes = static_cast<int>(opt.get_integer("frf_modes"));
+  const bool modal_frf = s.request.frf.has_value() && frf_modes > 0;
+  const int k_solve = std::max(k, modal_frf ? frf_modes : 0);
   Modes md;
   if (k_solve > 0) {
-    ModeOptions mo;
-    mo.modes = k_solve;
-    md = solve_modes(model, sys, mo);
-    phases.add("factorization", md.factor_seconds);
-    phases.add("eigen", md.eigen_seconds);
-    r.summary.iterations = md.iterations;
-    r.summary.max_residual = md.max_residual;
-    for (const auto& w : md.warnings) r.summary.warnings.push_back(w);
+    t0 = Clock::now();
+    md = solve_modes(model, sys, mode_options(opt, k_solve));
+    if (md.sturm_count >= 0) sum.threads = 2;  // the Sturm analysis overlaps the Lanczos iteration
+    sum.set_diagnostic("lanczos_restarts", static_cast<double>(md.iterations));
+    sum.set_diagnostic("max_eigen_residual", md.max_residual);
+    sum.note_backward_error(md.max_backward_error);
+    for (const auto& w : md.warnings) sum.warnings.push_back(w);
     const long shown = std::min<long>(k, md.lambda.size());
     for (long i = 0; i < shown; ++i) {
       const double lam = md.lambda[i];
       if (lam < 0 && lam < -1e-8 * std::abs(md.lambda[md.lambda.size() - 1]))
-        r.summary.warnings.push_back(fmt::format("mode {}: negative eigenvalue {:.3g} reported as 0", i + 1, lam));
+        sum.warnings.push_back(fmt::format("mode {}: negative eigenvalue {:.3g} reported as 0", i + 1, lam));
       r.frequencies_rad_s.push_back(std::sqrt(std::max(0.0, lam)));
       r.mode_families.push_back(md.family[static_cast<std::size_t>(i)]);
     }
-    if (shown < k)
-      r.summary.warnings.push_back(fmt::format("{} of {} requested modes computed", shown, k));
+    if (shown < k) sum.warnings.push_back(fmt::format("{} of {} requested modes computed", shown, k));
     method += "; modes: " + md.method;
-    if (!md.converged) set_status(r, Status::NotConverged, "eigen solve not converged: see warnings");
+    if (!md.converged) sum.raise(Status::NotConverged, "eigen solve not converged: see warnings");
     else if (md.max_backward_error > 1e-8)
-      set_status(r, Status::NumericalIssue,
-                 fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g})", md.max_backward_error,
-                             md.max_residual));
+      sum.raise(Status::NumericalIssue, fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g})",
+                                                    md.max_backward_error, md.max_residual));
+    sum.timings_s.modes += since(t0);
   }
 
-  // Statics at the probes.
   if (!s.request.probes.empty()) {
     t0 = Clock::now();
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n());
-    for (const auto& p : s.loads) {
-      Vector6d act;
-      act << p.Fx, p.Fy, p.Fz, p.Mx, p.My, p.Mz;
-      f += point_load(model, sys, point_of(s, {p.x, p.y}), act);
-    }
-    const StaticSolution st = solve_static(model, sys, f);
-    phases.add("factorization", st.factor_seconds);
-    if (!st.ok) {
-      set_status(r, st.mechanism ? Status::InvalidInput : Status::NumericalIssue,
-                 fmt::format("{}: supports: {}", mesh_source(s), st.message));
-    } else {
-      for (const auto& p : s.request.probes) {
-        const Eigen::Vector3d P = point_of(s, p);
-        Deflection d;
-        d.position = p;
-        double v[6];
-        for (int c = 0; c < 6; ++c) {
-          v[c] = point_observer(model, sys, P, c).dot(st.z);
-          // The singular part of the response to each load that interpolation misses.
-          for (const auto& l : s.loads) {
-            const double action[6] = {l.Fx, l.Fy, l.Fz, l.Mx, l.My, l.Mz};
-            for (int a = 0; a < 6; ++a)
-              if (action[a] != 0.0) v[c] += point_correction(model, P, c, point_of(s, {l.x, l.y}), a) * action[a];
-          }
-        }
-        if (!std::isfinite(v[2])) {
-          set_status(r, Status::NumericalIssue,
-                     fmt::format("probe ({}, {}): the deflection under a point load on a Mindlin plate is infinite "
-                                 "(logarithmic in the distance to the load); it is reported as null",
-                                 p[0], p[1]));
-        }
-        d.u = v[0];
-        d.v = v[1];
-        d.w = v[2];
-        d.theta_x = v[3];
-        d.theta_y = v[4];
-        d.theta_z = v[5];
-        r.deflections.push_back(d);
-      }
-      if (st.residual > 1e-8)
-        r.summary.warnings.push_back(fmt::format("static residual {:.3g} above 1e-8", st.residual));
-      r.summary.max_residual = std::max(r.summary.max_residual, st.residual);
-    }
+    solve_statics(s, model, sys, r);
     method += "; statics: sparse LDL' (AMD" + std::string(sys.m() > 0 ? ", saddle point with multipliers" : "") +
               "), mechanisms detected structurally";
-    phases.add("statics", since(t0) - st.factor_seconds);
+    sum.timings_s.statics += since(t0);
   }
 
-  // FRF: receptance w(observe) / Fz(excite).
   if (s.request.frf) {
     t0 = Clock::now();
-    const auto& fr = *s.request.frf;
-    std::vector<double> omegas;
-    for (int i = 0; i < fr.points; ++i)
-      omegas.push_back(fr.omega_min + (fr.omega_max - fr.omega_min) * i / (fr.points - 1));
-    Vector6d unit = Vector6d::Zero();
-    unit[2] = 1.0;
-    const Eigen::VectorXd f = point_load(model, sys, point_of(s, fr.excite), unit);
-    const Eigen::VectorXd g = point_observer(model, sys, point_of(s, fr.observe), 2);
-    // The singular part of the point response that interpolation between centres misses
-    // (static in character: the same at every frequency).
-    const double singular = point_correction(model, point_of(s, fr.observe), 2, point_of(s, fr.excite), 2);
-    FrfResult res;
-    if (modal_frf) {
-      if (md.lambda.size() < options.frf_modes)
-        r.summary.warnings.push_back(
-            fmt::format("modal FRF: {} modes available of {} requested", md.lambda.size(), options.frf_modes));
-      res = frf_modal(model, sys, md, f, g, omegas);
-    } else if (complete_spectrum_pays(sys, omegas.size())) {
-      // Many frequencies on a small model without viscous dampers: all modes of the discrete
-      // model once, then the exact partial-fraction sum per frequency (no truncation).
-      ModeOptions mo;
-      mo.modes = static_cast<int>(sys.n() - sys.m());
-      mo.method = EigenMethod::Dense;
-      const Modes all = solve_modes(model, sys, mo);
-      phases.add("eigen", all.eigen_seconds);
-      if (all.lambda.size() == sys.n() - sys.m() && all.max_backward_error < 1e-10) {
-        res = frf_modal(model, sys, all, f, g, omegas);
-        res.method = fmt::format(
-            "direct, by the complete spectral decomposition of the discrete model ({} modes, none truncated; equal to "
-            "a per-frequency solve to rounding), eta = {}",
-            all.lambda.size(), model.loss_factor);
-      } else {
-        res = frf_direct(model, sys, f, g, omegas);
-        phases.add("factorization", res.factor_seconds);
-      }
-    } else {
-      res = frf_direct(model, sys, f, g, omegas);
-      phases.add("factorization", res.factor_seconds);
-    }
-    if (!std::isfinite(singular))
-      set_status(r, Status::NumericalIssue,
-                 "FRF: excitation and observation at one point of a Mindlin plate: the receptance is infinite "
-                 "(logarithmic singularity of the point load)");
-    for (std::size_t i = 0; i < res.omega.size(); ++i) r.frf.push_back({res.omega[i], res.receptance[i] + singular});
-    if (res.skipped > 0)
-      r.summary.warnings.push_back(
-          fmt::format("FRF: {} sample(s) omitted (singular: on a natural frequency, or w = 0 of a free body)", res.skipped));
-    method += "; FRF: " + res.method;
-    phases.add("frf", since(t0) - res.factor_seconds);
+    method += "; FRF: " + solve_frf(s, model, sys, modal_frf ? &md : nullptr, frf_modes, r);
+    sum.timings_s.frf += since(t0);
   }
-  r.summary.method = method;
+  sum.method = method;
+}
+
+void RfemSolver::solve_statics(const Scene& s, const Model& model, const System& sys, Result& r) {
+  auto& sum = r.summary;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n());
+  for (const auto& p : s.loads) {
+    Vector6d act;
+    act << p.Fx, p.Fy, p.Fz, p.Mx, p.My, p.Mz;
+    f += point_load(model, sys, point_of(s, {p.x, p.y}), act);
+  }
+  const StaticSolution st = solve_static(model, sys, f);
+  if (!st.ok) {
+    sum.raise(st.mechanism ? Status::InvalidInput : Status::NumericalIssue,
+              fmt::format("{}: supports: {}", mesh_source(s), st.message));
+    return;
+  }
+  for (const auto& p : s.request.probes) {
+    const Eigen::Vector3d P = point_of(s, p);
+    Deflection d;
+    d.position = p;
+    double v[6];
+    for (int c = 0; c < 6; ++c) {
+      v[c] = point_observer(model, sys, P, c).dot(st.z);
+      // The singular part of the response to each load that interpolation misses.
+      for (const auto& l : s.loads) {
+        const double action[6] = {l.Fx, l.Fy, l.Fz, l.Mx, l.My, l.Mz};
+        for (int a = 0; a < 6; ++a)
+          if (action[a] != 0.0) v[c] += point_correction(model, P, c, point_of(s, {l.x, l.y}), a) * action[a];
+      }
+    }
+    if (!std::isfinite(v[2]))
+      sum.raise(Status::NumericalIssue,
+                fmt::format("probe ({}, {}): the deflection under a point load on a Mindlin plate is infinite "
+                            "(logarithmic in the distance to the load); it is reported as null",
+                            p[0], p[1]));
+    d.u = v[0];
+    d.v = v[1];
+    d.w = v[2];
+    d.theta_x = v[3];
+    d.theta_y = v[4];
+    d.theta_z = v[5];
+    r.deflections.push_back(d);
+  }
+  // Normwise backward error of the static solve, from its relative residual ||K z - f|| / ||f||.
+  const double fn = f.norm(), backward = fn > 0 ? st.residual * fn / (norm1(sys.K) * st.z.norm() + fn) : 0.0;
+  sum.set_diagnostic("static_relative_residual", st.residual);
+  sum.note_backward_error(backward);
+  if (backward > 1e-8)
+    sum.raise(Status::NumericalIssue,
+              fmt::format("static solve: backward error {:.3g} above 1e-8 (relative residual {:.3g}): the deflections "
+                          "are not trustworthy",
+                          backward, st.residual));
+}
+
+std::string RfemSolver::solve_frf(const Scene& s, const Model& model, const System& sys, const Modes* modes,
+                                  int frf_modes, Result& r) {
+  auto& sum = r.summary;
+  const auto& fr = *s.request.frf;
+  std::vector<double> omegas;
+  for (int i = 0; i < fr.points; ++i) omegas.push_back(fr.omega_min + (fr.omega_max - fr.omega_min) * i / (fr.points - 1));
+  Vector6d unit = Vector6d::Zero();
+  unit[2] = 1.0;
+  const Eigen::VectorXd f = point_load(model, sys, point_of(s, fr.excite), unit);
+  const Eigen::VectorXd g = point_observer(model, sys, point_of(s, fr.observe), 2);
+  // The singular part of the point response that interpolation between centres misses
+  // (static in character: the same at every frequency).
+  const double singular = point_correction(model, point_of(s, fr.observe), 2, point_of(s, fr.excite), 2);
+  FrfResult res;
+  if (modes) {
+    if (modes->lambda.size() < frf_modes)
+      sum.warnings.push_back(fmt::format("modal FRF: {} modes available of {} requested", modes->lambda.size(), frf_modes));
+    res = frf_modal(model, sys, *modes, f, g, omegas);
+  } else if (complete_spectrum_pays(sys, omegas.size())) {
+    // Many frequencies on a small model without viscous dampers: all modes of the discrete
+    // model once, then the exact partial-fraction sum per frequency (no truncation).
+    ModeOptions mo;
+    mo.modes = static_cast<int>(sys.n() - sys.m());
+    mo.method = EigenMethod::Dense;
+    const Modes all = solve_modes(model, sys, mo);
+    if (all.lambda.size() == sys.n() - sys.m() && all.max_backward_error < 1e-10) {
+      res = frf_modal(model, sys, all, f, g, omegas);
+      res.method = fmt::format(
+          "direct, by the complete spectral decomposition of the discrete model ({} modes, none truncated; equal to "
+          "a per-frequency solve to rounding), eta = {}",
+          all.lambda.size(), model.loss_factor);
+    } else {
+      sum.fallbacks.push_back(fmt::format(
+          "FRF: the complete spectral decomposition was not accurate enough (backward error {:.2g}): one solve per "
+          "frequency instead",
+          all.max_backward_error));
+      res = frf_direct(model, sys, f, g, omegas);
+    }
+  } else {
+    res = frf_direct(model, sys, f, g, omegas);
+  }
+  if (!std::isfinite(singular))
+    sum.raise(Status::NumericalIssue,
+              "FRF: excitation and observation at one point of a Mindlin plate: the receptance is infinite "
+              "(logarithmic singularity of the point load)");
+  for (std::size_t i = 0; i < res.omega.size(); ++i) r.frf.push_back({res.omega[i], res.receptance[i] + singular});
+  if (res.skipped > 0)
+    sum.warnings.push_back(
+        fmt::format("FRF: {} sample(s) omitted (singular: on a natural frequency, or w = 0 of a free body)", res.skipped));
+  return res.method;
 }
 
 }  // namespace modalbench::rfem

@@ -151,6 +151,22 @@ BOOST_AUTO_TEST_CASE(missing_keys) {
   expect_error(replace(kBase, ", points = 10", ""), "request.frf.points", "missing");
 }
 
+// [backend.NAME] tables are read as text per back-end; the back-end validates them when it solves.
+BOOST_AUTO_TEST_CASE(backend_tables) {
+  const Scene s = parse_scene(kBase + "[backend.rfem]\neigen = \"dense\"\nsturm_check = false\ntolerance = 1e-12\n"
+                                      "[backend.difference_eq]\nresidual_check_max_R = 100\n",
+                              "ok.toml");
+  BOOST_REQUIRE(s.backend_options.count("rfem") == 1u);
+  const auto& r = s.backend_options.at("rfem");
+  BOOST_REQUIRE(r.size() == 3u);
+  BOOST_TEST((r[0].key == "eigen" && r[0].text == "dense"));
+  BOOST_TEST((r[1].key == "sturm_check" && r[1].text == "false"));
+  BOOST_TEST(std::stod(r[2].text) == 1e-12);
+  BOOST_TEST(s.backend_options.at("difference_eq")[0].text == "100");
+  expect_error(kBase + "[backend]\nrfem = 3\n", "backend.rfem", "table of options");
+  expect_error(kBase + "[backend.rfem]\neigen = [1, 2]\n", "backend.rfem.eigen", "boolean, a number or a string");
+}
+
 BOOST_AUTO_TEST_CASE(wrong_types) {
   expect_error(replace(kBase, "length = 2.0", "length = \"2\""), "geometry.length", "number");
   expect_error(replace(kBase, "modes = 4", "modes = 4.5"), "request.modes", "integer");

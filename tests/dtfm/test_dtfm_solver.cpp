@@ -14,11 +14,6 @@ using namespace modalbench::dtfm;
 
 namespace {
 Scene scene(const char* file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + file); }
-bool has_timing(const Summary& s, const std::string& name) {
-  for (auto& [n, t] : s.timings_s)
-    if (n == name) return t >= 0;
-  return false;
-}
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(interface)
@@ -70,13 +65,17 @@ BOOST_AUTO_TEST_CASE(mechanism_and_rigid_modes) {
 
 BOOST_AUTO_TEST_CASE(options_that_do_not_apply_are_reported) {
   Options o;
-  o.mass = "lumped";
-  o.frf_modes = 10;
+  o.mass = MassModel::Lumped;
   const Result r = DtfmSolver().solve(scene("paper_fixed_beam.toml"), Discretization::parse("1x1"), o);
   BOOST_TEST(r.ok());
   int hits = 0;
-  for (auto& w : r.summary.warnings) hits += (w.find("lumped") != std::string::npos) + (w.find("frf_modes") != std::string::npos);
-  BOOST_TEST(hits == 2);
+  for (auto& w : r.summary.warnings) hits += w.find("lumped") != std::string::npos;
+  BOOST_TEST(hits == 1);
+  // rfem's option is not dtfm's: named as unknown, with dtfm's own list.
+  o.backend = {{"frf_modes", "10"}};
+  const Result bad = DtfmSolver().solve(scene("paper_fixed_beam.toml"), Discretization::parse("1x1"), o);
+  BOOST_TEST((bad.summary.status == Status::InvalidInput));
+  BOOST_TEST(bad.summary.message.find("--option frf_modes: unknown option of back-end dtfm") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
@@ -104,13 +103,14 @@ BOOST_AUTO_TEST_CASE(paper_beam_one_prism_equals_exact) {
   BOOST_REQUIRE(d.frf.size() == e.frf.size());
   for (std::size_t i = 0; i < d.frf.size(); ++i)
     BOOST_TEST(std::abs(d.frf[i].receptance - e.frf[i].receptance) < 1e-7 * std::abs(e.frf[i].receptance));
-  // Summary: method, DOFs, count evaluations, phases, Hamiltonian check.
+  // Summary: method, fields, count evaluations, phases, Hamiltonian check.
   const auto& sm = d.summary;
   BOOST_TEST(sm.method.find("dtfm") != std::string::npos);
-  BOOST_TEST(sm.dofs == 2);
-  BOOST_TEST(sm.iterations > 0);
-  for (const char* phase : {"build", "frequencies", "statics", "frf"}) BOOST_TEST(has_timing(sm, phase));
-  BOOST_TEST(sm.max_residual < 1e-12);
+  BOOST_TEST(sm.diagnostic("fields") == 2.0);
+  BOOST_TEST(sm.unknowns >= 2);
+  BOOST_TEST(sm.diagnostic("count_evaluations") > 0);
+  for (double t : {sm.timings_s.build, sm.timings_s.modes, sm.timings_s.statics, sm.timings_s.frf}) BOOST_TEST(t > 0);
+  BOOST_TEST(sm.diagnostic("segment_asymmetry") < 1e-12);
 }
 
 // Both paper scenes with the default meshes: every requested quantity, finite, with families.
@@ -128,8 +128,8 @@ BOOST_AUTO_TEST_CASE(paper_scenes_default_meshes) {
       }
       BOOST_TEST(r.deflections.size() == s.request.probes.size());
       BOOST_TEST(r.frf.size() + 2 >= static_cast<std::size_t>(s.request.frf->points));
-      BOOST_TEST(r.summary.dofs > 0);
-      BOOST_TEST(r.summary.max_residual < 1e-10);
+      BOOST_TEST(r.summary.unknowns > 0);
+      BOOST_TEST(r.summary.diagnostic("segment_asymmetry") < 1e-10);
     }
   }
 }

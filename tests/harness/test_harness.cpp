@@ -38,7 +38,7 @@ class Manufactured final : public Solver {
       r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * (1 + 0.5 * static_cast<double>(i + 1) / (n * n)));
       r.mode_families.push_back(x.mode_families[i]);
     }
-    r.summary.dofs = static_cast<long>(2 * n);
+    r.summary.unknowns = static_cast<long>(2 * n);
   }
 };
 

@@ -20,11 +20,6 @@ std::vector<Scene> builtin_scenes() {
     if (e.path().extension() == ".toml") v.push_back(load_scene(e.path()));
   return v;
 }
-bool has_phase(const Result& r, const std::string& name) {
-  for (const auto& [n, t] : r.summary.timings_s)
-    if (n == name) return t >= 0;
-  return false;
-}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(identity_and_capabilities) {
@@ -76,26 +71,20 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
 BOOST_AUTO_TEST_CASE(builtin_scenes_solve_on_the_default_mesh) {
   const RfemSolver s;
   for (const Scene& sc : builtin_scenes()) {
-    const std::clock_t c0 = std::clock();
     const Result r = s.solve(sc, s.default_mesh(sc), Options{});
-    const double cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     BOOST_TEST_MESSAGE(sc.name << " [" << s.default_mesh(sc).spec() << "]: " << to_string(r.summary.status) << " in "
                                << r.summary.total_time_s << " s; " << r.summary.method);
     BOOST_TEST(r.ok());
-    BOOST_TEST(r.summary.dofs > 0);
-    BOOST_TEST(r.summary.max_residual < 1e-6);  // relative residual: includes rounding times condition
+    BOOST_TEST(r.summary.unknowns > 0);
+    BOOST_TEST(r.summary.max_backward_error < 1e-8);
     BOOST_TEST(static_cast<int>(r.frequencies_rad_s.size()) == sc.request.modes);
     BOOST_TEST(r.deflections.size() == sc.request.probes.size());
     if (sc.request.frf) BOOST_TEST(static_cast<int>(r.frf.size()) == sc.request.frf->points);
-    BOOST_TEST(has_phase(r, "assembly"));
-    if (sc.request.modes > 0) BOOST_TEST(has_phase(r, "eigen"));
-    if (!sc.request.probes.empty()) BOOST_TEST(has_phase(r, "statics"));
-    if (sc.request.frf) BOOST_TEST(has_phase(r, "frf"));
+    BOOST_TEST(r.summary.timings_s.build > 0);
+    if (sc.request.modes > 0) BOOST_TEST(r.summary.timings_s.modes > 0);
+    if (!sc.request.probes.empty()) BOOST_TEST(r.summary.timings_s.statics > 0);
+    if (sc.request.frf) BOOST_TEST(r.summary.timings_s.frf > 0);
     for (double w : r.frequencies_rad_s) BOOST_TEST(std::isfinite(w));
-#ifdef NDEBUG
-    // CPU time, not wall time: the machine is shared, the default mesh must be fast (< 1 s).
-    BOOST_TEST(cpu_s < 1.0);
-#endif
   }
 }
 
@@ -117,7 +106,7 @@ BOOST_AUTO_TEST_CASE(default_mesh_agrees_with_exact_solver) {
 BOOST_AUTO_TEST_CASE(modal_frf_option) {
   const Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
   Options o;
-  o.frf_modes = 40;
+  o.backend = {{"frf_modes", "40"}};
   const RfemSolver s;
   const Result modal = s.solve(sc, Discretization{{64}}, o), direct = s.solve(sc, Discretization{{64}}, Options{});
   BOOST_REQUIRE(modal.ok());

@@ -1,23 +1,29 @@
 #pragma once
-// What a solver returns: frequencies, deflections, FRF samples and a summary that says
-// how far each number can be trusted.
+// What a solver returns: frequencies, deflections, FRF samples and a summary that says how far
+// each number can be trusted. Every field of Summary has one meaning in every back-end (stated
+// here; tests/core/test_result_contract.cpp checks every registered back-end against it).
 
 #include <array>
 #include <complex>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace modalbench {
 
+/// In order of severity: when several apply, the worst one is the result's status.
 enum class Status {
-  Success,         ///< every requested quantity computed and its checks passed
+  Success,         ///< every requested quantity computed and every check passed
   NotConverged,    ///< best result returned, marked; see message
-  NumericalIssue,  ///< a check failed (residual, conditioning, count); numbers are suspect
+  NumericalIssue,  ///< a check failed (residual, count, reproduction); numbers reported, see message
+  ResourceLimit,   ///< the request's estimated memory or time exceeds a stated limit (refused before allocating)
   Unsupported,     ///< the back-end cannot do this scene; see message
-  InvalidInput,    ///< scene or discretization rejected; see message
+  InvalidInput,    ///< the user's scene, mesh or options were rejected; see message
 };
 std::string to_string(Status);
+/// 0 for success up to 5 for invalid input (the enum's order).
+int severity(Status);
 
 /// Which physical family a mode belongs to (never guessed: `unknown` if not known).
 enum class ModeFamily { BendingXZ, BendingXY, Axial, Torsion, Plate, Rigid, Unknown };
@@ -35,17 +41,51 @@ struct FrfSample {
   std::complex<double> receptance;  ///< w(observe) / Fz(excite), m/N
 };
 
+/// Wall time per quantity, seconds. The same four phases in every back-end: `build` (reading the
+/// scene into the back-end's model: assembly, operators), then the work of each requested
+/// quantity, including the factorizations and checks it needs.
+struct PhaseTimes {
+  double build = 0, modes = 0, statics = 0, frf = 0;
+};
+
+inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
+
 struct Summary {
   Status status = Status::Success;
-  std::string message;           ///< readable reason when status != Success
-  std::string method;            ///< what was actually used (no silent fall-back)
-  long dofs = 0;                 ///< unknowns of the discrete model (0 for closed forms)
-  long iterations = 0;           ///< root-finder / eigensolver iterations
-  double max_residual = 0;       ///< largest relative check residual (eigen-residual etc.)
-  double condition_estimate = 0; ///< 0 when not estimated
-  std::vector<std::pair<std::string, double>> timings_s;  ///< per phase, seconds
+  /// Every message raised, in order, joined by "; " (empty on success).
+  std::string message;
+  /// What the back-end was asked to do: its options as given (scene [backend.NAME], command line),
+  /// "defaults" when none were given.
+  std::string method_requested = "defaults";
+  /// What was actually used, in words (discretization, algorithms, checks).
+  std::string method;
+  /// Each fall-back taken: what failed and what was used instead (empty: none).
+  std::vector<std::string> fallbacks;
+  /// Threads that worked at once (1, or 2 where a check overlaps the main solve).
+  int threads = 1;
+  /// Size of the linear or eigen system actually solved (the largest, when several are): for
+  /// rfem its coordinates, for difference_eq the free nodal DOFs of the banded system, for the
+  /// dynamic-stiffness methods (dtfm, exact) the free DOFs of the assembled K(omega).
+  long unknowns = 0;
+  /// Largest normwise backward error of the reported numbers: eigenpairs
+  /// ||K phi - lambda M phi|| / ((||K|| + |lambda| ||M||) ||phi||), static solves
+  /// ||K x - f|| / (||K|| ||x|| + ||f||), determinant roots |det K(lambda)| relative to its scale.
+  /// kNotMeasured (NaN, JSON null) where the back-end has no such check.
+  double max_backward_error = kNotMeasured;
+  /// Back-end-specific figures, by name (e.g. "iterations", "segment_asymmetry", "series_tail").
+  std::vector<std::pair<std::string, double>> diagnostics;
+  PhaseTimes timings_s;
   std::vector<std::string> warnings;
   double total_time_s = 0;
+
+  /// Records a problem: the status becomes the worse of the current one and `s`; the message is kept.
+  void raise(Status s, const std::string& text);
+  /// Sets (or replaces) a named diagnostic.
+  void set_diagnostic(const std::string& name, double value);
+  /// A named diagnostic, or kNotMeasured.
+  double diagnostic(const std::string& name) const;
+  /// Raises the backward error to at least `e` (NaN ignored).
+  void note_backward_error(double e);
 };
 
 struct Result {

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -107,6 +108,13 @@ struct Request {
   std::optional<FrfRequest> frf;
 };
 
+/// A back-end option as written in the scene (`[backend.NAME]` key = value), as text: the
+/// back-end's OptionSpec validates it when it solves (Solver::solve).
+struct SceneOption {
+  std::string key;
+  std::string text;
+};
+
 struct Scene {
   std::string name;
   std::string source;  ///< file it was read from (for messages)
@@ -120,6 +128,8 @@ struct Scene {
   std::vector<PointLoad> loads;
   Request request;
   std::vector<std::string> notes;  ///< defaults applied, errata cited, etc.
+  /// [backend.NAME] tables, by back-end name (names checked against the registry by the caller).
+  std::map<std::string, std::vector<SceneOption>> backend_options;
 
   bool is_beam() const { return kind == SceneKind::Beam; }
   bool is_plate() const { return kind == SceneKind::Plate; }

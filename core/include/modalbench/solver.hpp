@@ -8,6 +8,7 @@
 //   Result r = s.solve(scene, s.default_mesh(scene), Options{});
 //   if (!r.ok()) std::cerr << r.summary.message;
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,11 +27,53 @@ struct Discretization {
   static Discretization parse(const std::string& spec);
 };
 
-/// Back-end options common to all methods. Each field's default is stated here.
+/// Mass model of back-ends that offer two (difference_eq); the others state that it does not apply.
+enum class MassModel { Consistent, Lumped };
+std::string to_string(MassModel);  ///< consistent | lumped
+/// "consistent" or "lumped"; anything else throws InputError(source, key, the reason).
+MassModel parse_mass_model(const std::string& text, const std::string& source, const std::string& key);
+
+/// One back-end option: key, type, default, valid values and meaning (`modalbench options NAME`).
+struct OptionSpec {
+  enum class Type { Bool, Integer, Number, Choice };
+  std::string key;
+  Type type = Type::Number;
+  std::string default_value;         ///< as the user would write it
+  std::vector<std::string> choices;  ///< Choice: the allowed values
+  double min = -1e308, max = 1e308;  ///< Integer, Number: inclusive range
+  std::string help;
+};
+
+/// The back-end options in force for one solve: every spec'd key with its value (given or
+/// default). Filled and validated by Solver::solve from the scene's [backend.NAME] table and
+/// the command line (which wins); read by the back-end.
+class ResolvedOptions {
+ public:
+  bool get_bool(const std::string& key) const;
+  long get_integer(const std::string& key) const;
+  double get_number(const std::string& key) const;
+  const std::string& get_choice(const std::string& key) const;
+  /// "key=value (source), ..." for the keys that were given; "defaults" if none.
+  std::string given() const;
+
+  struct Entry {
+    OptionSpec spec;
+    std::string text;    ///< the value as text
+    std::string source;  ///< "default", the scene file, or "command line"
+  };
+  std::vector<Entry> entries;
+
+ private:
+  const Entry& find(const std::string& key, OptionSpec::Type type) const;
+};
+
+/// Run-time options common to all methods. Each field's default is stated here.
 struct Options {
-  std::string mass = "consistent";  ///< consistent | lumped (where a back-end offers both)
-  int frf_modes = 0;                ///< 0: direct FRF solve; >0: modal superposition with this many modes
-  bool validate_only = false;       ///< stop after validation (used by tests of error paths)
+  MassModel mass = MassModel::Consistent;  ///< where a back-end offers both
+  /// Back-end options from the command line (key -> value text), over the scene's [backend.NAME].
+  std::vector<std::pair<std::string, std::string>> backend;
+  /// Filled by Solver::solve (validated, defaults applied) before the back-end runs.
+  ResolvedOptions resolved;
 };
 
 /// What a solver can compute for a scene, or why not.
@@ -51,18 +94,21 @@ class Solver {
   virtual Discretization default_mesh(const Scene& scene) const = 0;
   /// Meshes from coarse to fine for convergence studies (each should be valid for the scene).
   virtual std::vector<Discretization> mesh_ladder(const Scene& scene) const { return {default_mesh(scene)}; }
+  /// The back-end's options (scene table [backend.NAME], command line --option KEY=VALUE).
+  virtual std::vector<OptionSpec> option_specs() const { return {}; }
   /// The largest meshes worth trying in the stability sweep (default: the finest of the ladder).
   virtual std::vector<Discretization> stress_meshes(const Scene& scene) const { return {mesh_ladder(scene).back()}; }
 
-  /// Validates, times, and fills the summary; then calls the back-end. Never throws for
-  /// numerical trouble or unsupported requests: those come back in `summary.status`.
-  /// Invalid input (bad mesh for this back-end, a scene that fails validation) comes back
-  /// as Status::InvalidInput with the reason.
+  /// Validates the scene and the options, times, and fills the summary; then calls the back-end.
+  /// Never throws for numerical trouble or unsupported requests: those come back in
+  /// `summary.status`. Invalid input (bad mesh or option for this back-end, a scene that fails
+  /// validation) comes back as Status::InvalidInput with the file, key and reason.
   Result solve(const Scene& scene, const Discretization& mesh, const Options& options) const;
 
  protected:
-  /// The back-end's work. May throw InputError for a bad discretization; any other
-  /// exception becomes Status::NumericalIssue with its message.
+  /// The back-end's work (options.resolved is filled). May throw InputError for a bad
+  /// discretization; std::bad_alloc becomes Status::ResourceLimit, any other exception
+  /// Status::NumericalIssue with its message.
   virtual void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
                         Result& result) const = 0;
 };
@@ -75,6 +121,9 @@ class Registry {
   const Solver& get(const std::string& name) const;
   std::vector<const Solver*> all() const;
   std::vector<std::string> names() const;
+  /// Throws InputError (scene file, "backend.NAME") if the scene has options for a back-end
+  /// that is not registered.
+  void check_backend_tables(const Scene& scene) const;
 
  private:
   std::vector<std::unique_ptr<Solver>> solvers_;

@@ -29,6 +29,12 @@ std::vector<int> ComplexBlockTridiagonal::free_index(int node) const {
   return idx;
 }
 
+int ComplexBlockTridiagonal::free_dofs() const {
+  int n = 0;
+  for (int i = 0; i < nodes(); ++i) n += static_cast<int>(free_index(i).size());
+  return n;
+}
+
 namespace {
 Eigen::MatrixXcd pick_c(const Eigen::MatrixXcd& M, const std::vector<int>& rows, const std::vector<int>& cols) {
   Eigen::MatrixXcd out(rows.size(), cols.size());

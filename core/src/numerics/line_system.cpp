@@ -66,7 +66,11 @@ int count_below(const LineSystem& sys, double lambda) { return assemble(sys, lam
 LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats) {
   LineSpectrum out;
   const double delta = kRigidThreshold * std::abs(lambda_hint);
-  auto N = [&](double lam) { return count_below(sys, lam); };
+  auto N = [&](double lam) {
+    const AssembledLine a = assemble(sys, lam);
+    if (stats) stats->max_unknowns = std::max<long>(stats->max_unknowns, a.K.free_dofs());
+    return a.K.inertia().negative;
+  };
   const int below = N(-delta);
   if (below != 0)
     throw std::runtime_error("the system has " + std::to_string(below) +

@@ -20,6 +20,7 @@ class ComplexBlockTridiagonal {
   void add_diagonal(int node, int dof, std::complex<double> value) { diag_[node](dof, dof) += value; }
   void hold(int node, int dof) { held_[node][dof] = 1; }
   bool held(int node, int dof) const { return held_[node][dof] != 0; }
+  int free_dofs() const;
   /// Solves K d = f; held DOFs get d = 0. Throws std::runtime_error if K is singular.
   Eigen::VectorXcd solve(const Eigen::VectorXcd& f) const;
   Eigen::MatrixXcd dense_free() const;

@@ -17,6 +17,7 @@ namespace modalbench {
 /// monotonic (numerical breakdown) or cannot be bracketed.
 struct SliceStats {
   long count_evaluations = 0;
+  long max_unknowns = 0;  ///< largest system the counts factorized (filled by callers that know it)
 };
 std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
                                    double lambda_hint, double rel_tol = 1e-13, SliceStats* stats = nullptr);

@@ -70,6 +70,8 @@ class DifferenceEqSolver final : public Solver {
   /// The stability sweep's largest meshes: the ladder's top and the largest multiple of the
   /// load/probe grid not above R = 10^6 (the closed forms are O(R) in statics, O(1) per mode).
   std::vector<Discretization> stress_meshes(const Scene& scene) const override;
+  /// static_method, residual_check_max_R (defaults from the Config the solver was built with).
+  std::vector<OptionSpec> option_specs() const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,

@@ -76,15 +76,18 @@ class LineAnalysis {
   /// the state matrices are Hamiltonian: a check on the operator).
   double max_asymmetry() const { return max_asymmetry_; }
   long evaluations() const { return evaluations_; }
+  /// Free DOFs of the largest K(omega^2) assembled so far (the size of the system solved).
+  long max_unknowns() const { return max_unknowns_; }
   int classes() const { return static_cast<int>(lines_.size()); }
 
-  struct ClassLine;  // one symmetry class as a scaled line problem (analysis.cpp)
+  struct ClassLine;  // one symmetry class as a scaled line problem (src/analysis_detail.hpp)
 
  private:
   const PrismModel& model_;
   SolveControls ctl_;
   std::vector<std::unique_ptr<ClassLine>> lines_;
   double max_asymmetry_ = 0;
+  long max_unknowns_ = 0;
   long evaluations_ = 0;
 
   /// Global nodes and the longest base piece for lambda in [0, lambda_max].

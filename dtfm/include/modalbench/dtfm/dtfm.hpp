@@ -55,6 +55,9 @@ class DtfmSolver final : public Solver {
   /// Beam: 1x1, 2x2, 4x4, 8x8 (spatial physics: up to 6x6); plate: 4, 7, 10, 20, 40 strips.
   std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
   std::vector<Discretization> stress_meshes(const Scene& scene) const override;
+  /// layers, kirchhoff_penalty (defaults from the ModelOptions the solver was built with), rel_tol,
+  /// im_h, re_h, family_threshold (SolveControls).
+  std::vector<OptionSpec> option_specs() const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,

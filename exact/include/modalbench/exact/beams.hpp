@@ -50,13 +50,14 @@ struct BendingResponse {
 /// mechanism if the supports do not restrain rigid motion.
 std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings left, EndSprings right,
                                          const std::vector<LineLoad>& loads, const std::vector<double>& probes,
-                                         double moment_sign);
+                                         double moment_sign, long* unknowns = nullptr);
 /// Static displacement of a bar at the probes under point loads (force = Fx or Mx).
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
-                               const std::vector<double>& probes);
+                               const std::vector<double>& probes, long* unknowns = nullptr);
 /// Undamped receptance w(observe)/F(excite) of a beam in one plane at omega (exact).
+/// `unknowns`, if given, is raised to the size of the system solved (as for the statics).
 double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
-                       double omega);
+                       double omega, long* unknowns = nullptr);
 
 /// Bending properties of a scene's beam in x-z (about y) or x-y (about z), per its theory.
 BeamBending bending_xz(const Scene& s);

@@ -24,6 +24,8 @@ class ExactSolver final : public Solver {
   }
   Capability supports(const Scene& scene) const override;
   Discretization default_mesh(const Scene&) const override { return {}; }
+  /// navier_static_terms (2000), navier_frf_terms (300): truncation of the Navier double series.
+  std::vector<OptionSpec> option_specs() const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,

@@ -15,6 +15,7 @@ struct Frequencies {
   std::vector<double> omega_rad_s;  ///< ascending, rigid-body modes as 0
   int rigid = 0;
   long count_evaluations = 0;
+  long unknowns = 0;  ///< largest assembled dynamic stiffness factorized (free DOFs)
 };
 
 }  // namespace modalbench::exact

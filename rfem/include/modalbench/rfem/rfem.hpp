@@ -13,8 +13,11 @@
 // (rfem-plate section). Builders and their modelling choices: builders.hpp; solves: analysis.hpp.
 //
 // Meshes: beam "N" (segments of the primary division, N >= 1); plate "NXxNY" (fragments along
-// x and y, each >= 2). Probes give the rigid-body motion u_P = D(r) q of the RFE that contains
-// P (the mean over the RFEs sharing a cell boundary); point loads act on that RFE as D(r)' F.
+// x and y, each >= 2). Probes interpolate the motion of the RFE centres around P (linear along a
+// beam, bilinear on a plate: the model's consistent displacement field); point loads act through
+// the transpose; the point action's singular response (slope jump, r^2 ln r) is added in closed
+// form (system.hpp, point_correction).
+// Options ([backend.rfem] in the scene, --option on the command line): see option_specs().
 //
 // Usage:
 //   modalbench::rfem::RfemSolver rfem;
@@ -26,7 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/model.hpp"
+#include "modalbench/rfem/system.hpp"
 #include "modalbench/solver.hpp"
 
 namespace modalbench::rfem {
@@ -43,12 +48,23 @@ class RfemSolver final : public Solver {
   /// Beams 10,000 and 100,000 segments; plates 100 fragments along the longer side.
   std::vector<Discretization> stress_meshes(const Scene& scene) const override;
 
-  /// The model for a scene and mesh. Throws InputError (key "--mesh") for a bad mesh.
-  static Model build(const Scene& scene, const Discretization& mesh);
+  /// eigen, dense_limit, tolerance, sturm_check, seed, frf_modes, beam_rigid_shear,
+  /// plate_rigid_shear, plate_bending_correction (defaults and ranges in rfem.cpp).
+  std::vector<OptionSpec> option_specs() const override;
+
+  /// The model for a scene and mesh (`options`: the builder options; null = defaults). Throws
+  /// InputError (key "--mesh") for a bad mesh.
+  static Model build(const Scene& scene, const Discretization& mesh, const ResolvedOptions* options = nullptr);
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
                 Result& result) const override;
+
+ private:
+  static void solve_statics(const Scene& s, const Model& model, const System& sys, Result& r);
+  /// Fills r.frf; returns the method used. `modes`: modal superposition over them (null: direct).
+  static std::string solve_frf(const Scene& s, const Model& model, const System& sys, const Modes* modes,
+                               int frf_modes, Result& r);
 };
 
 }  // namespace modalbench::rfem

@@ -1,9 +1,9 @@
+// rfem natural modes: dense or shift-invert Lanczos with a Sturm check, family labels, residuals.
 #include "modalbench/rfem/analysis.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <Eigen/SparseLU>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
 #include <algorithm>
@@ -14,32 +14,17 @@
 #include <stdexcept>
 
 #include "modalbench/rfem/factor.hpp"
+#include "analysis_detail.hpp"
 
 namespace modalbench::rfem {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// r - G' (G G')^{-1} G r: removes the part of a force that the constraints carry.
-class ConstraintProjector {
- public:
-  explicit ConstraintProjector(const SpMat& G) : G_(G) {
-    if (G.rows() == 0) return;
-    const SpMat GGt = G * G.transpose();
-    ldlt_.compute(GGt);
-    if (ldlt_.info() != Eigen::Success) throw std::runtime_error("rfem: G G' factorization failed (dependent constraints)");
-  }
-  Eigen::VectorXd operator()(const Eigen::VectorXd& r) const {
-    if (G_.rows() == 0) return r;
-    return r - G_.transpose() * ldlt_.solve(G_ * r);
-  }
-
- private:
-  const SpMat& G_;
-  Eigen::SimplicialLDLT<SpMat> ldlt_;
-};
+using detail::Clock;
+using detail::ConstraintProjector;
+using detail::dense_flexible;
+using detail::Flexible;
+using detail::seconds_since;
 
 /// y = P_R (K - sigma M)^{-1} x, P_R = I - R R' M (rigid modes deflated), with G z = 0 enforced.
 class ShiftInvertOp {
@@ -115,69 +100,6 @@ double choose_shift(const Model& model, const System& sys) {
     w = ratio.empty() ? 1.0 : 1e-3 * std::sqrt(ratio[ratio.size() / 2]);
   }
   return -std::pow(0.2 * w, 2);
-}
-
-struct Flexible {
-  Eigen::VectorXd lambda;
-  Eigen::MatrixXd Z;
-};
-
-Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, double sigma, std::string& method) {
-  const long n = sys.n(), m = sys.m(), r = R.cols();
-  Eigen::MatrixXd N;
-  if (m + r > 0) {
-    Eigen::MatrixXd Cd(m + r, n);
-    if (m > 0) Cd.topRows(m) = Eigen::MatrixXd(sys.G);
-    if (r > 0) Cd.bottomRows(r) = (sys.M * R).transpose();
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Cd.transpose());
-    const long rank = qr.rank();
-    const Eigen::MatrixXd Q = qr.householderQ();
-    N = Q.rightCols(n - rank);
-  } else {
-    N = Eigen::MatrixXd::Identity(n, n);
-  }
-  Eigen::MatrixXd Kr = N.transpose() * (sys.K * N), Mr = N.transpose() * (sys.M * N);
-  Kr = 0.5 * (Kr + Kr.transpose()).eval();
-  Mr = 0.5 * (Mr + Mr.transpose()).eval();
-  const long k = std::min<long>(want, N.cols());
-  const std::string basis =
-      m + r > 0 ? fmt::format(" (orthonormal basis of G z = 0{})", r > 0 ? ", rigid modes deflated" : "") : "";
-  Flexible f;
-  // Shift-invert form, as the Lanczos path: (Kr - sigma Mr) = L L', eigenvalues mu of
-  // L^-1 Mr L^-T, lambda = sigma + 1/mu. Its absolute error is eps / (lambda_1 - sigma), so the
-  // low modes keep their relative accuracy when the stiffness spans many decades (stiff
-  // supports); the forward form (Cholesky of Mr) errs by eps * lambda_max and lost the
-  // fundamental of a beam on 1e12 EI/L^3 springs.
-  Eigen::LLT<Eigen::MatrixXd> llt(Kr - sigma * Mr);
-  if (llt.info() == Eigen::Success) {
-    Eigen::MatrixXd B = llt.matrixL().solve(llt.matrixL().solve(Mr).transpose());
-    B = 0.5 * (B + B.transpose()).eval();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(B);
-    if (es.info() != Eigen::Success) throw std::runtime_error("dense symmetric eigensolver failed");
-    const long nb = B.rows();
-    f.lambda.resize(k);
-    Eigen::MatrixXd Y(nb, k);
-    for (long i = 0; i < k; ++i) {
-      const double mu = es.eigenvalues()[nb - 1 - i];  // largest mu = lowest lambda
-      f.lambda[i] = sigma + 1.0 / mu;
-      Y.col(i) = es.eigenvectors().col(nb - 1 - i);
-    }
-    f.Z = N * llt.matrixU().solve(Y);
-    method = fmt::format(
-        "dense shift-invert symmetric eigensolver (Eigen: Cholesky of K - sigma M, sigma = {:.6g} rad^2/s^2, tridiagonal "
-        "QR) on {} unknowns{}",
-        sigma, N.cols(), basis);
-    return f;
-  }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kr, Mr);
-  if (ges.info() != Eigen::Success) throw std::runtime_error("dense generalized eigensolver failed");
-  f.lambda = ges.eigenvalues().head(k);
-  f.Z = N * ges.eigenvectors().leftCols(k);
-  method = fmt::format(
-      "dense generalized symmetric eigensolver (Eigen, Cholesky of M + tridiagonal QR; K - sigma M was not positive "
-      "definite at sigma = {:.6g}) on {} unknowns{}",
-      sigma, N.cols(), basis);
-  return f;
 }
 
 }  // namespace
@@ -449,176 +371,6 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
     out.warnings.push_back(fmt::format("largest eigen backward error {:.3g} exceeds {:.1g} (largest residual {:.3g})",
                                        out.max_backward_error, opt.backward_error_warning, out.max_residual));
   out.eigen_seconds = seconds_since(t_eigen) - out.factor_seconds;
-  return out;
-}
-
-StaticSolution solve_static(const Model& model, const System& sys, const Eigen::VectorXd& f) {
-  StaticSolution s;
-  const auto t0 = Clock::now();
-  const RigidModes rigid = free_rigid_modes(model, sys);
-  if (rigid.Z.cols() > 0) {
-    s.mechanism = true;
-    // Name the coordinates each free motion moves most.
-    std::vector<std::string> moved;
-    for (long c = 0; c < rigid.Z.cols(); ++c) {
-      const Eigen::VectorXd z = rigid.Z.col(c);
-      const double zmax = z.cwiseAbs().maxCoeff();
-      long listed = 0, more = 0;
-      for (long i = 0; i < z.size(); ++i)
-        if (std::abs(z[i]) >= 0.5 * zmax) {
-          if (listed < 4) moved.push_back(coordinate_name(model, sys, i)), ++listed;
-          else ++more;
-        }
-      if (more > 0) moved.push_back(fmt::format("... {} more", more));
-    }
-    s.message = fmt::format(
-        "mechanism: the supports leave {} rigid-body motion(s) free ({}); free coordinates include {}. Static "
-        "deflection is undefined: add supports or springs",
-        rigid.Z.cols(), fmt::join(rigid.motions, "; "), fmt::join(moved, ", "));
-    s.factor_seconds = seconds_since(t0);
-    return s;
-  }
-  KktLdlt ldlt;
-  ldlt.analyze(sys.K, sys.G, sys.groups);
-  const bool fact = ldlt.factorize(sys.K);
-  long where = -1;
-  const double ratio = ldlt.smallest_primal_pivot_ratio(&where);
-  s.factor_seconds = seconds_since(t0);
-  if (!fact || ldlt.negative_count() != 0 || ratio < 1e-14) {
-    s.message = fmt::format(
-        "stiffness matrix singular or indefinite: {} negative pivot(s), smallest pivot ratio {:.3g} at {}",
-        fact ? ldlt.negative_count() : -1, ratio,
-        where >= 0 ? coordinate_name(model, sys, where) : std::string("?"));
-    return s;
-  }
-  const auto t1 = Clock::now();
-  s.z = ldlt.solve(f);
-  const ConstraintProjector P(sys.G);
-  const double fn = f.norm();
-  s.residual = fn > 0 ? P(sys.K * s.z - f).norm() / fn : 0.0;
-  s.solve_seconds = seconds_since(t1);
-  s.ok = true;
-  return s;
-}
-
-FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
-                     const std::vector<double>& omegas) {
-  using Cplx = std::complex<double>;
-  using CSp = Eigen::SparseMatrix<Cplx>;
-  FrfResult out;
-  const long n = sys.n(), m = sys.m();
-  const double eta = model.loss_factor;
-  const bool real = eta == 0 && sys.C.nonZeros() == 0;
-  const double fn = std::max(f.norm(), 1e-300);
-  // Undamped: the real symmetric dynamic stiffness K - w^2 M by the saddle-point LDL' (its
-  // symbolic analysis done once); a sample whose residual is poor falls back to the LU below.
-  KktLdlt ldlt;
-  if (real) ldlt.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups);
-  long fallbacks = 0;
-  double s = 0;
-  for (long i = 0; i < n; ++i) s += std::abs(sys.K.coeff(i, i));
-  s = n > 0 && s > 0 ? s / static_cast<double>(n) : 1.0;
-  std::vector<Eigen::Triplet<Cplx>> base;
-  auto add = [&](const SpMat& A, Cplx factor) {
-    for (int j = 0; j < A.outerSize(); ++j)
-      for (SpMat::InnerIterator it(A, j); it; ++it) base.emplace_back(it.row(), j, factor * it.value());
-  };
-  for (int j = 0; j < sys.G.outerSize(); ++j)
-    for (SpMat::InnerIterator it(sys.G, j); it; ++it) {
-      base.emplace_back(n + it.row(), j, s * it.value());
-      base.emplace_back(j, n + it.row(), s * it.value());
-    }
-  const std::size_t nborder = base.size();
-  Eigen::SparseLU<CSp, Eigen::COLAMDOrdering<int>> lu;
-  bool analysed = false;
-  Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(n + m);
-  rhs.head(n) = f.cast<Cplx>();
-  const ConstraintProjector P(sys.G);
-  for (double w : omegas) {
-    const auto t0 = Clock::now();
-    if (real) {
-      const SpMat A = sys.K - (w * w) * sys.M;
-      if (ldlt.factorize(A)) {
-        const Eigen::VectorXd x = ldlt.solve(f);
-        const double res = P(A * x - f).norm() / fn;
-        out.factor_seconds += seconds_since(t0);
-        if (res < 1e-8 && x.allFinite()) {
-          out.omega.push_back(w);
-          out.receptance.push_back(Cplx(g.dot(x), 0.0));
-          continue;
-        }
-      }
-      ++fallbacks;
-    }
-    base.resize(nborder);
-    add(sys.K, Cplx(1.0, eta));
-    add(sys.C, Cplx(0.0, w));
-    add(sys.M, Cplx(-w * w, 0.0));
-    CSp A(n + m, n + m);
-    A.setFromTriplets(base.begin(), base.end());
-    A.makeCompressed();
-    if (!analysed) {
-      lu.analyzePattern(A);
-      analysed = true;
-    }
-    lu.factorize(A);
-    out.factor_seconds += seconds_since(t0);
-    if (lu.info() != Eigen::Success) {
-      ++out.skipped;
-      continue;
-    }
-    const Eigen::VectorXcd x = lu.solve(rhs);
-    const Cplx h = g.cast<Cplx>().dot(x.head(n));  // dot conjugates g, which is real
-    if (!std::isfinite(std::abs(h))) {
-      ++out.skipped;
-      continue;
-    }
-    out.omega.push_back(w);
-    out.receptance.push_back(h);
-  }
-  if (real)
-    out.method = fmt::format(
-        "direct, undamped: sparse LDL' of K - w^2 M{} per frequency (residual-checked; {} sample(s) by sparse LU)",
-        m > 0 ? " with the constraint border" : "", fallbacks);
-  else
-    out.method = fmt::format(
-        "direct: sparse LU (Eigen SparseLU, COLAMD) of K(1 + i eta) + i w C - w^2 M{} per frequency, eta = {}",
-        m > 0 ? " with the constraint border" : "", eta);
-  return out;
-}
-
-FrfResult frf_modal(const Model& model, const System& sys, const Modes& modes, const Eigen::VectorXd& f,
-                    const Eigen::VectorXd& g, const std::vector<double>& omegas) {
-  using Cplx = std::complex<double>;
-  FrfResult out;
-  const double eta = model.loss_factor;
-  const long k = modes.lambda.size();
-  Eigen::VectorXd pf(k), pg(k), c(k);
-  for (long i = 0; i < k; ++i) {
-    const Eigen::VectorXd z = modes.Z.col(i);
-    pf[i] = z.dot(f);
-    pg[i] = z.dot(g);
-    c[i] = z.dot(sys.C * z);
-  }
-  for (double w : omegas) {
-    Cplx h = 0;
-    bool singular = false;
-    for (long i = 0; i < k; ++i) {
-      const Cplx den = Cplx(modes.lambda[i] - w * w, eta * modes.lambda[i] + w * c[i]);
-      if (std::abs(den) == 0) {
-        singular = true;
-        break;
-      }
-      h += pg[i] * pf[i] / den;
-    }
-    if (singular || !std::isfinite(std::abs(h))) {
-      ++out.skipped;
-      continue;
-    }
-    out.omega.push_back(w);
-    out.receptance.push_back(h);
-  }
-  out.method = fmt::format("modal superposition over {} modes (diagonal modal damping z' C z, eta = {})", k, eta);
   return out;
 }
 

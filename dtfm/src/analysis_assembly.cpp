@@ -1,0 +1,132 @@
+// LineAnalysis assembly: segment dynamic stiffnesses into K(lambda), and the Wittrick-Williams count.
+#include "modalbench/dtfm/analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "analysis_detail.hpp"
+
+namespace modalbench::dtfm {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::AssemblyInfo;
+
+template <class Mat>
+void transform_end(Mat& k, const Eigen::MatrixXd& B, int mc, bool left) {
+  using Scalar = typename Mat::Scalar;
+  const Mat Bs = B.template cast<Scalar>();
+  if (left) {
+    k.topLeftCorner(mc, mc) = (Bs.transpose() * k.topLeftCorner(mc, mc) * Bs).eval();
+    k.topRightCorner(mc, mc) = (Bs.transpose() * k.topRightCorner(mc, mc)).eval();
+    k.bottomLeftCorner(mc, mc) = (k.bottomLeftCorner(mc, mc) * Bs).eval();
+  } else {
+    k.bottomRightCorner(mc, mc) = (Bs.transpose() * k.bottomRightCorner(mc, mc) * Bs).eval();
+    k.bottomLeftCorner(mc, mc) = (Bs.transpose() * k.bottomLeftCorner(mc, mc)).eval();
+    k.topRightCorner(mc, mc) = (k.topRightCorner(mc, mc) * Bs).eval();
+  }
+}
+
+/// Long-segment stiffness by doubling, real or complex (the pieces the base length allows).
+LongSegment long_segment(const Eigen::MatrixXd& A, double h, int levels) {
+  return long_segment_dynamic_stiffness(A, h, levels);
+}
+LongSegmentC long_segment(const Eigen::MatrixXcd& A, double h, int levels) {
+  return long_segment_dynamic_stiffness(A, h, levels);
+}
+int clamped_of(const LongSegment& s) { return s.clamped_below; }
+int clamped_of(const LongSegmentC&) { return 0; }
+double log_tdf_of(const LongSegment& s) { return s.log_abs_det_tdf; }
+double log_tdf_of(const LongSegmentC&) { return 0.0; }
+
+template <class Tri, class Mat, class Scalar>
+AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, const Mat& A, const std::vector<double>& x,
+                           double h_base, double& max_asym) {
+  const int nn = static_cast<int>(x.size()), mc = c.mc;
+  using Seg = decltype(long_segment(A, 1.0, 0));
+  std::vector<std::pair<double, Seg>> cache;
+  AssemblyInfo info;
+  for (int i = 0; i + 1 < nn; ++i) {
+    const double h = x[i + 1] - x[i];
+    const Seg* hit = nullptr;
+    for (const auto& e : cache)
+      if (std::abs(h - e.first) <= 1e-9 * h) hit = &e.second;
+    if (!hit) {
+      const int levels = std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+      cache.emplace_back(h, long_segment(A, h, levels));
+      hit = &cache.back().second;
+      max_asym = std::isfinite(hit->asymmetry) ? std::max(max_asym, hit->asymmetry) : kInf;
+      info.min_pivot_rel = std::min(info.min_pivot_rel, hit->min_pivot_rel);
+    }
+    info.clamped_below += clamped_of(*hit);
+    info.log_poles += log_tdf_of(*hit);
+    if (i == 0 || i + 2 == nn) {
+      Mat k = hit->K;
+      if (i == 0) transform_end(k, c.ends[0].B, mc, true);
+      if (i + 2 == nn) transform_end(k, c.ends[1].B, mc, false);
+      K.add_segment(i, k);
+    } else {
+      K.add_segment(i, hit->K);
+    }
+  }
+  for (int e = 0; e < 2; ++e) {
+    const auto& ce = c.ends[e];
+    const int node = e == 0 ? 0 : nn - 1;
+    if (ce.n_free > 0 && ce.K.norm() > 0) {
+      Mat pad = Mat::Zero(2 * mc, 2 * mc);
+      if (e == 0) pad.topLeftCorner(ce.n_free, ce.n_free) = ce.K.template cast<Scalar>();
+      else pad.block(mc, mc, ce.n_free, ce.n_free) = ce.K.template cast<Scalar>();
+      K.add_segment(e == 0 ? 0 : nn - 2, pad);
+    }
+    for (int j = ce.n_free; j < mc; ++j) K.hold(node, j);
+  }
+  return info;
+}
+
+}  // namespace
+
+LineAnalysis::Assembled LineAnalysis::assemble(const ClassLine& c, double lambda, const Mesh& mesh) {
+  Assembled out{BlockTridiagonal(static_cast<int>(mesh.x.size()), c.mc), {}};
+  out.info = assemble_into<BlockTridiagonal, Eigen::MatrixXd, double>(out.K, c, c.state(lambda), mesh.x,
+                                                                      mesh.h_base, max_asymmetry_);
+  max_unknowns_ = std::max<long>(max_unknowns_, out.K.free_dofs());
+  return out;
+}
+
+ComplexBlockTridiagonal LineAnalysis::assemble(const ClassLine& c, std::complex<double> lambda, const Mesh& mesh) {
+  ComplexBlockTridiagonal K(static_cast<int>(mesh.x.size()), c.mc);
+  assemble_into<ComplexBlockTridiagonal, Eigen::MatrixXcd, std::complex<double>>(K, c, c.state(lambda), mesh.x,
+                                                                                 mesh.h_base, max_asymmetry_);
+  max_unknowns_ = std::max<long>(max_unknowns_, K.free_dofs());
+  return K;
+}
+
+CountDet LineAnalysis::count_det(const ClassLine& c, double lambda, const Mesh& mesh) {
+  ++evaluations_;
+  // A segment whose condensed middle block is nearly singular (lambda close to a clamped
+  // frequency of a sub-piece) is split at its middle: the global LDL^T then pivots across it.
+  Mesh use = mesh;
+  for (int attempt = 0;; ++attempt) {
+    const Assembled a = assemble(c, lambda, use);
+    if (a.info.min_pivot_rel < 1e-10 && attempt < 4) {
+      use = refined(use);
+      continue;
+    }
+    const auto in = a.K.inertia();
+    // Wittrick-Williams: J = J0 (segments) + s{K}; det K * prod det Tdf has no poles.
+    return {in.negative + a.info.clamped_below, in.log_abs_det + a.info.log_poles};
+  }
+}
+
+int LineAnalysis::count_below(double lambda, const std::vector<ModeFamily>& families) {
+  int n = 0;
+  for (int c : pick(families)) {
+    const Mesh mesh = mesh_for(*lines_[c], std::max(lambda, 0.0), {});
+    n += count_det(*lines_[c], lambda, mesh).count;
+  }
+  return n;
+}
+
+}  // namespace modalbench::dtfm

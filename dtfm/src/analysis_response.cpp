@@ -1,0 +1,138 @@
+// LineAnalysis forced responses: static deflection under point loads and receptance FRFs.
+#include "modalbench/dtfm/analysis.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "analysis_detail.hpp"
+
+namespace modalbench::dtfm {
+
+namespace {
+using detail::to_fields;
+}  // namespace
+
+std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& loads,
+                                              const std::vector<std::array<double, 2>>& probes) {
+  std::vector<double> required;
+  for (const auto& p : loads) required.push_back(p.x);
+  for (const auto& p : probes) required.push_back(p[0]);
+  const int m = model_.m;
+  std::vector<Eigen::VectorXd> qp(probes.size(), Eigen::VectorXd::Zero(m));
+  for (const auto& line : lines_) {
+    ClassLine& c = *line;
+    const Mesh mesh = mesh_for(c, 0.0, required);
+    const auto& x = mesh.x;
+    const int nn = static_cast<int>(x.size());
+    auto node = [&](double xx) {
+      for (int i = 0; i < nn; ++i)
+        if (std::abs(x[i] - xx) <= 1e-12 * model_.length) return i;
+      return static_cast<int>(std::lower_bound(x.begin(), x.end(), xx) - x.begin());
+    };
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
+    for (const auto& p : loads) {
+      const int i = node(std::clamp(p.x, 0.0, model_.length));
+      Eigen::VectorXd fc = c.W.transpose() * model_.load_vector(p) / c.sigma;
+      if (i == 0) fc = c.ends[0].B.transpose() * fc;
+      if (i == nn - 1) fc = c.ends[1].B.transpose() * fc;
+      f.segment(static_cast<Eigen::Index>(i) * c.mc, c.mc) += fc;
+    }
+    if (f.norm() == 0.0) continue;
+    const Assembled a = assemble(c, 0.0, mesh);
+    Eigen::VectorXd d;
+    try {
+      d = a.K.solve(f);
+    } catch (const std::runtime_error&) {
+      throw std::runtime_error(fmt::format(
+          "mechanism: the supports do not restrain the loaded motions ({} / {})", model_.ends[0].text,
+          model_.ends[1].text));
+    }
+    const auto q = to_fields(c, d, nn);
+    for (std::size_t j = 0; j < probes.size(); ++j) qp[j] += q[node(std::clamp(probes[j][0], 0.0, model_.length))];
+  }
+  std::vector<Deflection> out;
+  for (std::size_t j = 0; j < probes.size(); ++j) {
+    Deflection d = model_.section_response(qp[j], probes[j][1]);
+    d.position = probes[j];
+    out.push_back(d);
+  }
+  return out;
+}
+
+std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2> excite, std::array<double, 2> observe,
+                                                           const std::vector<double>& omegas, double eta,
+                                                           int* skipped) {
+  std::vector<std::complex<double>> H(omegas.size(), 0.0);
+  if (skipped) *skipped = 0;
+  if (omegas.empty()) return H;
+  PointLoad unit;
+  unit.x = excite[0];
+  unit.y = excite[1];
+  unit.Fz = 1.0;
+  const Eigen::VectorXd f_full = model_.load_vector(unit);
+  const Eigen::RowVectorXd o_full = model_.w_observer(observe[1]);
+  const double w_max = *std::max_element(omegas.begin(), omegas.end());
+  const std::complex<double> cdamp(1.0, eta);
+  std::vector<char> bad(omegas.size(), 0);
+  for (const auto& line : lines_) {
+    ClassLine& c = *line;
+    const Eigen::VectorXd fc0 = c.W.transpose() * f_full / c.sigma;
+    const Eigen::RowVectorXd oc = o_full * c.W;
+    if (fc0.norm() == 0.0 || oc.norm() == 0.0) continue;
+    const Mesh mesh = mesh_for(c, w_max * w_max, {excite[0], observe[0]});
+    const auto& x = mesh.x;
+    const int nn = static_cast<int>(x.size());
+    auto node = [&](double xx) {
+      for (int i = 0; i < nn; ++i)
+        if (std::abs(x[i] - xx) <= 1e-12 * model_.length) return i;
+      return 0;
+    };
+    const int ie = node(std::clamp(excite[0], 0.0, model_.length));
+    const int io = node(std::clamp(observe[0], 0.0, model_.length));
+    Eigen::VectorXd fc = fc0;
+    if (ie == 0) fc = c.ends[0].B.transpose() * fc;
+    if (ie == nn - 1) fc = c.ends[1].B.transpose() * fc;
+    auto observe_at = [&](auto dnode) {
+      using V = std::decay_t<decltype(dnode)>;
+      V d = dnode;
+      if (io == 0) d = c.ends[0].B.template cast<typename V::Scalar>() * d;
+      if (io == nn - 1) d = c.ends[1].B.template cast<typename V::Scalar>() * d;
+      return (oc.template cast<typename V::Scalar>() * d)(0);
+    };
+    for (std::size_t s = 0; s < omegas.size(); ++s) {
+      const double lam = omegas[s] * omegas[s];
+      if (eta == 0.0) {
+        Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
+        f.segment(static_cast<Eigen::Index>(ie) * c.mc, c.mc) = fc;
+        try {
+          const Eigen::VectorXd d = assemble(c, lam, mesh).K.solve(f);
+          H[s] += observe_at(Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(io) * c.mc, c.mc)));
+        } catch (const std::runtime_error&) {
+          bad[s] = 1;
+        }
+      } else {
+        Eigen::VectorXcd f = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
+        f.segment(static_cast<Eigen::Index>(ie) * c.mc, c.mc) = fc.cast<std::complex<double>>() / cdamp;
+        try {
+          const Eigen::VectorXcd d = assemble(c, std::complex<double>(lam) / cdamp, mesh).solve(f);
+          H[s] += observe_at(Eigen::VectorXcd(d.segment(static_cast<Eigen::Index>(io) * c.mc, c.mc)));
+        } catch (const std::runtime_error&) {
+          bad[s] = 1;
+        }
+      }
+    }
+  }
+  for (std::size_t s = 0; s < omegas.size(); ++s) {
+    if (bad[s]) {
+      H[s] = std::numeric_limits<double>::quiet_NaN();
+      if (skipped) ++*skipped;
+    }
+  }
+  return H;
+}
+
+}  // namespace modalbench::dtfm

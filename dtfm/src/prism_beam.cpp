@@ -1,0 +1,230 @@
+// Beam prism model: the section cut into ny x nz prisms joined by spring layers (build_beam).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "modalbench/rigid_kinematics.hpp"
+#include "prism_model_detail.hpp"
+
+namespace modalbench::dtfm::detail {
+
+namespace {
+
+const char* dof_name(int d) {
+  static const char* names[] = {"u", "v", "w", "theta_x", "theta_y", "theta_z"};
+  return names[d];
+}
+
+Eigen::Vector3d point(double y, double z) { return Eigen::Vector3d(0.0, y, z); }
+
+}  // namespace
+
+PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& opt) {
+  PrismModel mdl;
+  mdl.kind = SceneKind::Beam;
+  mdl.layers = opt.layers;
+  const double L = s.geometry.length, Bw = s.geometry.width, Hh = s.geometry.height;
+  const auto& mat = s.material;
+  int ny = ny_req;
+  std::vector<int> active;
+  if (s.physics != Physics::Spatial) {
+    if (ny_req > 1)
+      mdl.notes.push_back(fmt::format("physics '{}' is a plane x-z problem: the {} prisms across the width move "
+                                      "together, so the model is 1x{} (the width division changes nothing)",
+                                      to_string(s.physics), ny_req, nz));
+    ny = 1;
+    if (s.physics == Physics::Bending && nz == 1) active = {Uz, Ry};
+    else active = {Ux, Uz, Ry};
+  } else {
+    active = {Ux, Uy, Uz, Rx, Ry, Rz};
+  }
+  mdl.length = L;
+  mdl.ny = ny;
+  mdl.nz = nz;
+  const double dy = Bw / ny, dz = Hh / nz;
+  Assembly as(mdl);
+  for (int iz = 0; iz < nz; ++iz)
+    for (int iy = 0; iy < ny; ++iy)
+      as.add_prism({-Bw / 2 + (iy + 0.5) * dy, -Hh / 2 + (iz + 0.5) * dz, dy, dz}, active);
+  as.allocate();
+  auto prism_at = [&](int iy, int iz) { return iz * ny + iy; };
+
+  const bool eb = s.theory == Theory::EulerBernoulli;
+  const bool paper = opt.layers == LayerModel::Paper;
+  const Section sec = rectangular_section(dy, dz);
+  const double E = mat.E, G = mat.G, rho = mat.rho, kap = mat.kappa;
+  // Shear of a prism in a plane across which the section is cut: the layers resolve the
+  // shear-stress distribution there, so no shear coefficient (Consistent) or no prism shear
+  // at all (Staggered); the printed model keeps kappa.
+  auto prism_kappa = [&](int n_across) {
+    if (eb) return kInf;
+    if (n_across == 1 || paper) return kap;
+    return opt.layers == LayerModel::Staggered ? kInf : 1.0;
+  };
+  const double kz = prism_kappa(nz), ky = prism_kappa(ny);
+  const double torsion = paper ? sec.Ip : sec.J;
+  const std::array<double, 6> stiff = {E * sec.A, ky * G * sec.A, kz * G * sec.A, G * torsion, E * sec.Iy, E * sec.Iz};
+  const std::array<double, 6> mass = {rho * sec.A, rho * sec.A, rho * sec.A, rho * sec.Ip,
+                                      eb ? 0.0 : rho * sec.Iy, eb ? 0.0 : rho * sec.Iz};
+  for (int p = 0; p < static_cast<int>(mdl.prisms.size()); ++p) {
+    as.prism_operator(p, stiff, mass);
+    const std::array<double, 6> w = {sec.A, sec.A, sec.A, sec.Ip, sec.Iy, sec.Iz};
+    for (int d = 0; d < 6; ++d)
+      if (as.at(p, d) >= 0) mdl.section_weights(as.at(p, d), as.at(p, d)) = w[d];
+  }
+
+  // Spring layers between neighbours (Eq. (25) from the attachment kinematics) and, for the
+  // consistent model, the cross terms of gamma_xz (z-layers) and gamma_xy (y-layers) and the
+  // Poisson coupling. Normal strains split exactly as (plane stress across the layer)
+  //   W = 1/2 E eps_xx^2 + 1/2 E' (eps_nn + nu eps_xx)^2,   E' = E / (1 - nu^2):
+  // the prisms keep the first term, the layer the second (with eps_xx the prisms' mean at the
+  // layer), so a free lateral surface relaxes to uniaxial stress and a clamp stiffens.
+  const bool consistent = opt.layers == LayerModel::Consistent;
+  const double Gs = paper ? kap * G : G;
+  const double En = consistent ? E / (1.0 - mat.nu * mat.nu) : E;
+  const double nu = consistent ? mat.nu : 0.0;
+  const double gauss = 0.5 / std::sqrt(3.0);
+  auto layer = [&](int a, int b, bool normal_z) {
+    const auto& ga = mdl.prisms[a];
+    const auto& gb = mdl.prisms[b];
+    const Eigen::Vector3d ca = point(ga.y, ga.z), cb = point(gb.y, gb.z);
+    const Eigen::Vector3d P = 0.5 * (ca + cb);
+    const double delta = (cb - ca).norm();
+    const double t = normal_z ? ga.width : ga.height;  // the layer's extent in the section
+    Vector6d k;
+    if (normal_z) k << Gs * t / delta, Gs * t / delta, En * t / delta, En * t * t * t / (12 * delta), 0.0,
+        G * t * t * t / (12 * delta);
+    else k << Gs * t / delta, En * t / delta, Gs * t / delta, En * t * t * t / (12 * delta),
+        G * t * t * t / (12 * delta), 0.0;
+    as.scatter(mdl.Q1, a, b, sde_stiffness(P - ca, P - cb, Eigen::Matrix3d::Identity(), k));
+    if (!consistent) return;
+    // Cross terms, integrated over the layer by 2-point Gauss (exact: every factor is linear
+    // in s): G int (x-jump)(mean out-of-plane shear of the prisms) ds, and the Poisson terms
+    // E' nu int (normal jump)(mean eps_xx) ds + 1/2 E' nu^2 delta int (mean eps_xx)^2 ds.
+    Eigen::MatrixXd X12 = Eigen::MatrixXd::Zero(12, 12), P12 = Eigen::MatrixXd::Zero(12, 12);
+    const int normal = normal_z ? Uz : Uy;
+    for (double sg : {-gauss * t, gauss * t}) {
+      const Eigen::Vector3d Pg = P + (normal_z ? Eigen::Vector3d(0, sg, 0) : Eigen::Vector3d(0, 0, sg));
+      Eigen::Matrix<double, 1, 12> Jx, Jn;
+      const Matrix6d Da = attachment(Pg - ca), Db = attachment(Pg - cb);
+      Jx.leftCols<6>() = -Da.row(Ux);
+      Jx.rightCols<6>() = Db.row(Ux);
+      Jn.leftCols<6>() = -Da.row(normal);
+      Jn.rightCols<6>() = Db.row(normal);
+      Eigen::Matrix<double, 12, 1> Es = Eigen::Matrix<double, 12, 1>::Zero(), Ex = Es;
+      for (int side = 0; side < 2; ++side) {
+        const auto& g = side == 0 ? ga : gb;
+        const int o = 6 * side;
+        if (normal_z) {  // gamma_xz(y) = w' + theta_y + theta_x' (y - y_c)
+          Es[o + Uz] = 0.5;
+          Es[o + Rx] = 0.5 * (Pg.y() - g.y);
+        } else {  // gamma_xy(z) = v' - theta_z - theta_x' (z - z_c)
+          Es[o + Uy] = 0.5;
+          Es[o + Rx] = -0.5 * (Pg.z() - g.z);
+        }
+        // eps_xx(y, z) = u' + theta_y' (z - z_c) - theta_z' (y - y_c)
+        Ex[o + Ux] = 0.5;
+        Ex[o + Ry] = 0.5 * (Pg.z() - g.z);
+        Ex[o + Rz] = -0.5 * (Pg.y() - g.y);
+      }
+      const double w = 0.5 * t;
+      X12 += G * w * Es * Jx + En * nu * w * Ex * Jn;
+      P12 += En * nu * nu * delta * w * Ex * Ex.transpose();
+    }
+    as.scatter(mdl.X, a, b, X12);
+    as.scatter(as.P, a, b, P12);
+  };
+  for (int iz = 0; iz < nz; ++iz)
+    for (int iy = 0; iy < ny; ++iy) {
+      if (iy + 1 < ny) layer(prism_at(iy, iz), prism_at(iy + 1, iz), false);
+      if (iz + 1 < nz) layer(prism_at(iy, iz), prism_at(iy, iz + 1), true);
+    }
+  as.finish_compliance();
+
+  // Rigid section motions (about the centroid) over the fields: D(c_i) rows of active slots.
+  const int m = mdl.m;
+  mdl.rigid_motions = Eigen::MatrixXd::Zero(m, 6);
+  for (int k = 0; k < m; ++k) {
+    const auto& g = mdl.prisms[mdl.field_prism[k]];
+    mdl.rigid_motions.row(k) = attachment(point(g.y, g.z)).row(mdl.field_dof[k]);
+  }
+  // Which rigid motions exist in this model.
+  std::vector<int> motions;
+  if (s.physics == Physics::Spatial) motions = {0, 1, 2, 3, 4, 5};
+  else if (s.physics == Physics::Bending && nz == 1) motions = {2, 4};
+  else motions = {0, 2, 4};
+  auto end = [&](const Support& sp, const char* where) {
+    if (sp.is_free()) return make_end(Eigen::MatrixXd(m, 0), {}, false, m, std::string(where) + ": free");
+    const double springs[6] = {sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational,
+                               sp.rotational};
+    Eigen::MatrixXd T(m, static_cast<Eigen::Index>(motions.size()));
+    std::vector<double> k;
+    for (std::size_t i = 0; i < motions.size(); ++i) {
+      T.col(static_cast<Eigen::Index>(i)) = mdl.rigid_motions.col(motions[i]);
+      k.push_back(springs[motions[i]]);
+    }
+    return make_end(T, k, true, m, std::string(where) + ": " + sp.kind + " (rigid end plate)");
+  };
+  mdl.ends[0] = end(s.x0, "x0");
+  mdl.ends[1] = end(s.xL, "xL");
+
+  // Reflections z -> -z and y -> -y (only those that act on the active fields).
+  auto reflection = [&](bool about_z) {
+    static const int sz[6] = {+1, +1, -1, -1, -1, +1};  // z -> -z: w, theta_x, theta_y flip
+    static const int sy[6] = {+1, -1, +1, -1, +1, -1};  // y -> -y: v, theta_x, theta_z flip
+    Reflection R;
+    R.perm.resize(m);
+    R.sign.resize(m);
+    bool nontrivial = false;
+    for (int k = 0; k < m; ++k) {
+      const int p = mdl.field_prism[k], d = mdl.field_dof[k];
+      const int iy = p % ny, iz = p / ny;
+      const int q = about_z ? prism_at(iy, nz - 1 - iz) : prism_at(ny - 1 - iy, iz);
+      R.perm[k] = as.at(q, d);
+      R.sign[k] = about_z ? sz[d] : sy[d];
+      nontrivial = nontrivial || R.perm[k] != k || R.sign[k] < 0;
+    }
+    if (nontrivial) mdl.reflections.push_back(R);
+    return nontrivial;
+  };
+  const bool has_y = reflection(false);
+  const bool has_z = reflection(true);
+  if (!reflections_commute(mdl)) {
+    mdl.reflections.clear();
+    mdl.notes.push_back("section reflections do not commute with the operator: no symmetry split");
+  }
+  // Families by parity (y, z): (+,+) axial, (+,-) bending x-z, (-,+) bending x-y, (-,-) torsion.
+  std::vector<ModeFamily> fam;
+  std::vector<std::vector<int>> rigid_cols;
+  const int nr = static_cast<int>(mdl.reflections.size());
+  for (int c = 0; c < (1 << nr); ++c) {
+    int py = +1, pz = +1, bit = 0;
+    if (has_y && nr > 0) py = (c & (1 << bit++)) ? -1 : +1;
+    if (has_z && bit < nr) pz = (c & (1 << bit)) ? -1 : +1;
+    if (nr == 0) {
+      fam.push_back(ModeFamily::Unknown);
+      rigid_cols.push_back({});
+      continue;
+    }
+    if (py > 0 && pz > 0) { fam.push_back(ModeFamily::Axial); rigid_cols.push_back({0}); }
+    else if (py > 0) { fam.push_back(ModeFamily::BendingXZ); rigid_cols.push_back({2, 4}); }
+    else if (pz > 0) { fam.push_back(ModeFamily::BendingXY); rigid_cols.push_back({1, 5}); }
+    else { fam.push_back(ModeFamily::Torsion); rigid_cols.push_back({3}); }
+  }
+  build_classes(mdl, fam, rigid_cols);
+
+  std::string fields;
+  for (int d : active) fields += (fields.empty() ? "" : ", ") + std::string(dof_name(d));
+  mdl.description = fmt::format("{}x{} prisms ({}; {} per prism: {}), {} layers, {} prisms", ny, nz,
+                                s.physics == Physics::Spatial ? "spatial" : "plane x-z", active.size(), fields,
+                                to_string(opt.layers), eb ? "Euler-Bernoulli" : "Timoshenko");
+  const double Iy = Bw * Hh * Hh * Hh / 12.0, Iz = Hh * Bw * Bw * Bw / 12.0;
+  const double Imin = s.physics == Physics::Spatial ? std::min(Iy, Iz) : Iy;
+  mdl.lambda_scale = std::pow(std::numbers::pi / L, 4) * E * Imin / (rho * Bw * Hh);
+  mdl.translation_scale = std::min(dz, s.physics == Physics::Spatial ? dy : dz);
+  return mdl;
+}
+
+}  // namespace modalbench::dtfm::detail

@@ -1,0 +1,44 @@
+#pragma once
+// Internal to the rfem analysis: timing, the constraint projector, the dense flexible eigensolver.
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "modalbench/rfem/system.hpp"
+
+namespace modalbench::rfem::detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// r - G' (G G')^{-1} G r: removes the part of a force that the constraints carry.
+class ConstraintProjector {
+ public:
+  explicit ConstraintProjector(const SpMat& G) : G_(G) {
+    if (G.rows() == 0) return;
+    const SpMat GGt = G * G.transpose();
+    ldlt_.compute(GGt);
+    if (ldlt_.info() != Eigen::Success) throw std::runtime_error("rfem: G G' factorization failed (dependent constraints)");
+  }
+  Eigen::VectorXd operator()(const Eigen::VectorXd& r) const {
+    if (G_.rows() == 0) return r;
+    return r - G_.transpose() * ldlt_.solve(G_ * r);
+  }
+
+ private:
+  const SpMat& G_;
+  Eigen::SimplicialLDLT<SpMat> ldlt_;
+};
+
+struct Flexible {
+  Eigen::VectorXd lambda;
+  Eigen::MatrixXd Z;
+};
+
+// Dense path of solve_modes (analysis_dense.cpp).
+Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, double sigma, std::string& method);
+
+}  // namespace modalbench::rfem::detail
