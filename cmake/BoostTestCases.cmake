@@ -9,6 +9,7 @@ function(modalbench_add_boost_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} Boost::unit_test_framework modalbench_warnings)
+  target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
   target_compile_definitions(${T_NAME} PRIVATE BOOST_TEST_DYN_LINK
     MODALBENCH_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes"
     MODALBENCH_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")

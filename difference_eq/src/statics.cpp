@@ -160,6 +160,8 @@ SupportSolution solve_supports(const double k[4]) {
         M(a, b) = kKhat[idx[a]][idx[b]] + (a == b ? k[idx[a]] : 0.0);
       }
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eg(G, Eigen::EigenvaluesOnly), em(M, Eigen::EigenvaluesOnly);
+    if (eg.info() != Eigen::Success || em.info() != Eigen::Success)
+      throw std::runtime_error("difference_eq: the 4x4 eigenproblem of the support conditioning did not converge");
     s.flexibility = eg.eigenvalues().maxCoeff();
     s.condition = em.eigenvalues().maxCoeff() * s.flexibility;
   }

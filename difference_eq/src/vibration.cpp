@@ -208,6 +208,8 @@ ModeShape mode_shape(const RegularBeam& beam, MassModel mass, double omega) {
   const Chain c = chain_at(p, omega * omega * p.lam_to_Omega);
   const Eigen::Matrix4d Cm = c.characteristic_matrix(p.k);
   Eigen::JacobiSVD<Eigen::Matrix4d> svd(Cm, Eigen::ComputeFullV);
+  if (svd.info() != Eigen::Success)
+    throw std::runtime_error("difference_eq: SVD of the 4x4 characteristic matrix failed (non-finite entries)");
   const Eigen::Vector4d amp = svd.matrixV().col(3);
   const long R = beam.R;
   ModeShape u;

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <memory>
 
 #include "analysis_detail.hpp"
@@ -50,6 +51,7 @@ LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : mo
       if (end.N.cols() > 0) {
         const Eigen::MatrixXd raw = line->Winv * end.N;
         Eigen::JacobiSVD<Eigen::MatrixXd> svd(raw, Eigen::ComputeThinU);
+        if (svd.info() != Eigen::Success) throw std::runtime_error("dtfm: SVD of the end conditions failed");
         const auto& sv = svd.singularValues();
         int r = 0;
         for (Eigen::Index i = 0; i < sv.size(); ++i)

@@ -57,7 +57,7 @@ EndCondition make_end(const Eigen::MatrixXd& T, const std::vector<double>& k, bo
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(Tf);
   e.N = qr.householderQ() * Eigen::MatrixXd::Identity(m, Tf.cols());
   const Eigen::MatrixXd R = e.N.transpose() * Tf;
-  const Eigen::MatrixXd Rinv = R.inverse();
+  const Eigen::MatrixXd Rinv = checked_inverse(R, "dtfm: the end-spring coordinates (R of Tf = N R)");
   e.K = Rinv.transpose() * kf.asDiagonal() * Rinv;
   e.K = 0.5 * (e.K + e.K.transpose());
   return e;

@@ -1,4 +1,5 @@
 // PrismModel: the operator of Eq. (32), loads and observations over the fields; build_model.
+#include "modalbench/numerics/checked_inverse.hpp"
 #include "modalbench/dtfm/prism_model.hpp"
 
 #include <fmt/format.h>
@@ -30,7 +31,7 @@ using dofs::Uz;
 Eigen::MatrixXd PrismModel::A20() const {
   for (int k = 0; k < m; ++k)
     if (!(C(k, k) > 0)) throw std::logic_error("A20 does not exist: a strain is rigid (Euler-Bernoulli/Kirchhoff)");
-  const Eigen::MatrixXd P = C.inverse();
+  const Eigen::MatrixXd P = checked_inverse(C, "dtfm: the prism compliance C (A20 = -C^-1)");
   return -0.5 * (P + P.transpose());
 }
 
@@ -98,7 +99,7 @@ Eigen::VectorXd PrismModel::load_vector(const PointLoad& load) const {
   }
   Vector6d F;
   F << load.Fx, load.Fy, load.Fz, load.Mx, load.My, load.Mz;
-  const Vector6d r = section_metric(*this).ldlt().solve(F);
+  const Vector6d r = checked_symmetric_solve(section_metric(*this), F, "dtfm: the section metric (load distribution)");
   return section_weights * rigid_motions * r;
 }
 
@@ -117,7 +118,8 @@ Deflection PrismModel::section_response(const Eigen::VectorXd& q, double y) cons
     d.theta_y = value(Ry);
     return d;
   }
-  const Vector6d r = section_metric(*this).ldlt().solve(Vector6d(rigid_motions.transpose() * section_weights * q));
+  const Vector6d r = checked_symmetric_solve(section_metric(*this), Vector6d(rigid_motions.transpose() * section_weights * q),
+                                             "dtfm: the section metric (section response)");
   // Components the physics does not carry stay 0 (their rows are absent from rigid_motions).
   d.u = r[0];
   d.v = r[1];

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "modalbench/numerics/checked_inverse.hpp"
 #include "modalbench/dtfm/prism_model.hpp"
 #include "modalbench/rigid_kinematics.hpp"
 
@@ -62,7 +63,8 @@ struct Assembly {
     Eigen::MatrixXd Pf(f.size(), f.size());
     for (std::size_t i = 0; i < f.size(); ++i)
       for (std::size_t j = 0; j < f.size(); ++j) Pf(i, j) = P(f[i], f[j]);
-    const Eigen::MatrixXd Cf = Pf.ldlt().solve(Eigen::MatrixXd::Identity(Pf.rows(), Pf.cols()));
+    const Eigen::MatrixXd Cf = checked_symmetric_solve(Pf, Eigen::MatrixXd::Identity(Pf.rows(), Pf.cols()),
+                                                       "dtfm: the prism stiffness on its deformable strains");
     for (std::size_t i = 0; i < f.size(); ++i)
       for (std::size_t j = 0; j < f.size(); ++j) mdl.C(f[i], f[j]) = 0.5 * (Cf(i, j) + Cf(j, i));
   }

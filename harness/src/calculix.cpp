@@ -1,5 +1,7 @@
 #include "modalbench/harness/calculix.hpp"
 
+#include "modalbench/harness/files.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -87,10 +89,6 @@ Grid make_grid(const Scene& s, const SolidMesh& m) {
       }
   return g;
 }
-
-struct Classified {
-  std::vector<ModeFamily> families;
-};
 
 /// Families from mode shapes. Beam: per x-slice the section-mean ux, uy, uz and the twist;
 /// the family whose share of the sum of squares exceeds 0.6 names the mode. Nearly
@@ -210,7 +208,7 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
     r.summary.raise(Status::Unsupported, why);
     return rec;
   }
-  fs::create_directories(work_dir);
+  make_output_dir(work_dir);
   std::string name;
   for (char c : s.name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   name += fmt::format("_{}x{}x{}", m.nx, m.ny, m.nz);
@@ -278,7 +276,7 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
   }
   const int k = std::max(1, s.request.modes) * (s.is_beam() ? 3 : 2) + 4;
   inp << fmt::format("*STEP\n*FREQUENCY\n{}\n*NODE PRINT, NSET=NALL\nU\n*END STEP\n", k);
-  std::ofstream(fs::path(work_dir) / (name + ".inp")) << inp.str();
+  write_text_file((fs::path(work_dir) / (name + ".inp")).string(), inp.str());
   r.summary.unknowns = 3L * n_nodes - held;
 
   const auto t0 = std::chrono::steady_clock::now();

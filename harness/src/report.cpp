@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "modalbench/harness/files.hpp"
 #include "report_document.hpp"
 
 namespace modalbench {
@@ -78,7 +79,7 @@ std::vector<std::pair<std::string, std::string>> environment_info(const std::str
 }
 
 std::string write_report(const std::vector<SceneComparison>& all, const std::string& dir, const ReportOptions& opt) {
-  fs::create_directories(dir);
+  make_output_dir(dir);
   Context ctx{dir, opt, {}};
   Doc doc;
   const auto env = environment_info(opt.gnuplot);
@@ -101,8 +102,8 @@ std::string write_report(const std::vector<SceneComparison>& all, const std::str
   write_runs_csv((fs::path(dir) / "runs.csv").string(), all);
   write_frequencies_csv((fs::path(dir) / "frequencies.csv").string(), all);
   write_results_json((fs::path(dir) / "results.json").string(), all, env, ctx.problems);
-  std::ofstream(fs::path(dir) / "report.md") << doc.md;
-  std::ofstream(fs::path(dir) / "index.html") << doc.html;
+  write_text_file((fs::path(dir) / "report.md").string(), doc.md);
+  write_text_file((fs::path(dir) / "index.html").string(), doc.html);
   return (fs::path(dir) / "index.html").string();
 }
 

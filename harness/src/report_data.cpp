@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "modalbench/harness/files.hpp"
 #include "modalbench/json_output.hpp"
 #include "report_document.hpp"
 
@@ -45,20 +46,19 @@ nlohmann::json scene_json(const SceneComparison& c) {
 }  // namespace
 
 void write_runs_csv(const std::string& path, const std::vector<SceneComparison>& all) {
-  std::ofstream csv(path);
-  csv << "scene,backend,mesh,dofs,status,median_s,repeats,max_frequency_error,deflection_error,frf_error_db,reference\n";
+  std::string csv = "scene,backend,mesh,dofs,status,median_s,repeats,max_frequency_error,deflection_error,frf_error_db,reference\n";
   for (const auto& c : all)
     for (const auto& r : c.runs) {
       const auto& s = r.result.summary;
-      csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), s.unknowns,
+      csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), s.unknowns,
                          to_string(s.status), r.median_s, r.repeats, r.max_frequency_error, r.deflection_error,
                          r.frf_error_db, c.reference.source);
     }
+  write_text_file(path, csv);
 }
 
 void write_frequencies_csv(const std::string& path, const std::vector<SceneComparison>& all) {
-  std::ofstream csv(path);
-  csv << "scene,backend,mesh,mode,family,omega_rad_s,reference_rad_s,reference_uncertainty_rad_s,relative_error\n";
+  std::string csv = "scene,backend,mesh,mode,family,omega_rad_s,reference_rad_s,reference_uncertainty_rad_s,relative_error\n";
   for (const auto& c : all)
     for (const auto& r : c.runs) {
       // Each run's modes with the reference mode they were matched to.
@@ -71,10 +71,11 @@ void write_frequencies_csv(const std::string& path, const std::vector<SceneCompa
             unc = c.reference.frequency_uncertainty[k];
             err = r.frequency_errors[k];
           }
-        csv << fmt::format("{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), i + 1,
+        csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), i + 1,
                            to_string(r.result.mode_families[i]), r.result.frequencies_rad_s[i], refv, unc, err);
       }
     }
+  write_text_file(path, csv);
 }
 
 void write_results_json(const std::string& path, const std::vector<SceneComparison>& all,
@@ -86,7 +87,7 @@ void write_results_json(const std::string& path, const std::vector<SceneComparis
   root["scenes"] = nlohmann::json::array();
   for (const auto& c : all) root["scenes"].push_back(scene_json(c));
   root["problems"] = problems;
-  std::ofstream(path) << root.dump(2) << "\n";
+  write_text_file(path, root.dump(2) + "\n");
 }
 
 }  // namespace modalbench::report_detail

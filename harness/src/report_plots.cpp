@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "modalbench/harness/files.hpp"
 #include "report_document.hpp"
 
 namespace modalbench::report_detail {
@@ -18,15 +19,16 @@ std::string plot(Context& ctx, const std::string& name, const std::string& setup
     if (!s.points.empty()) used.push_back(&s);
   if (used.empty()) return "";
   const fs::path pdir = fs::path(ctx.dir) / "plots";
-  fs::create_directories(pdir);
+  make_output_dir(pdir.string());
   std::string cmd = "set terminal svg size 760,460 dynamic enhanced font 'Helvetica,12' background rgb 'white'\n";
   cmd += fmt::format("set output '{}'\n{}\nset key outside right top\n", (pdir / (name + ".svg")).string(), setup);
   cmd += "plot ";
   for (std::size_t i = 0; i < used.size(); ++i) {
     const fs::path dat = pdir / fmt::format("{}_{}.dat", name, i);
-    std::ofstream d(dat);
+    std::string data;
     for (auto& [x, y] : used[i]->points)
-      if (std::isfinite(x) && std::isfinite(y)) d << fmt::format("{:.10g} {:.10g}\n", x, y);
+      if (std::isfinite(x) && std::isfinite(y)) data += fmt::format("{:.10g} {:.10g}\n", x, y);
+    write_text_file(dat.string(), data);
     std::string title = used[i]->title;
     std::replace(title.begin(), title.end(), '\'', ' ');
     std::replace(title.begin(), title.end(), '_', '-');
@@ -34,7 +36,7 @@ std::string plot(Context& ctx, const std::string& name, const std::string& setup
   }
   cmd += "\n";
   const fs::path gp = pdir / (name + ".gp");
-  std::ofstream(gp) << cmd;
+  write_text_file(gp.string(), cmd);
   const std::string out = command_output(ctx.options.gnuplot + " '" + gp.string() + "'");
   std::ifstream in(pdir / (name + ".svg"));
   std::stringstream ss;

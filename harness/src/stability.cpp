@@ -10,6 +10,7 @@
 #include <map>
 
 #include "modalbench/harness/comparison.hpp"
+#include "modalbench/harness/files.hpp"
 
 namespace modalbench {
 
@@ -189,7 +190,7 @@ std::vector<StabilityRow> run_stability(const std::vector<StabilityCase>& cases,
 }
 
 int write_stability_report(const std::vector<StabilityRow>& rows, const std::string& dir) {
-  std::filesystem::create_directories(dir);
+  make_output_dir(dir);
   std::map<Verdict, int> tally;
   for (const auto& r : rows) ++tally[r.verdict];
   const int bad = tally[Verdict::UnflaggedBad];
@@ -206,8 +207,7 @@ int write_stability_report(const std::vector<StabilityRow>& rows, const std::str
                      "</style></head><body><h1>modalbench stability sweep</h1>";
   html += fmt::format("<p>{} runs: {} ok, {} refused with a reason, {} flagged by their own diagnostics, <b>{} unflagged bad</b>.</p>",
                       rows.size(), tally[Verdict::Ok], tally[Verdict::Refused], tally[Verdict::Flagged], bad);
-  std::ofstream csv(std::filesystem::path(dir) / "stability.csv");
-  csv << "group,case,backend,mesh,verdict,status,requested,returned,max_error_vs_exact,time_s,detail\n";
+  std::string csv = "group,case,backend,mesh,verdict,status,requested,returned,max_error_vs_exact,time_s,detail\n";
   std::string group;
   for (const auto& r : rows) {
     if (r.group != group) {
@@ -229,12 +229,14 @@ int write_stability_report(const std::vector<StabilityRow>& rows, const std::str
                         cls, r.label, r.backend, r.mesh, to_string(r.verdict), r.returned, r.requested, err, r.time_s, detail);
     std::string cdetail = detail;
     std::replace(cdetail.begin(), cdetail.end(), ',', ';');
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r.group, r.label, r.backend, r.mesh, to_string(r.verdict),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r.group, r.label, r.backend, r.mesh, to_string(r.verdict),
                        to_string(r.status), r.requested, r.returned, r.max_error_vs_exact, r.time_s, cdetail);
   }
   html += "</table></body></html>\n";
-  std::ofstream(std::filesystem::path(dir) / "stability.md") << md;
-  std::ofstream(std::filesystem::path(dir) / "stability.html") << html;
+  const std::filesystem::path d(dir);
+  write_text_file((d / "stability.csv").string(), csv);
+  write_text_file((d / "stability.md").string(), md);
+  write_text_file((d / "stability.html").string(), html);
   return bad;
 }
 

@@ -325,7 +325,14 @@ Modes solve_modes(const Model& model, const System& sys, const ModeOptions& opt)
         W += wgt * mass * Q.row(row).transpose() * Q.row(row);
       }
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(W);
-      out.Z.middleCols(i, j - i) = (out.Z.middleCols(i, j - i) * es.eigenvectors()).eval();
+      // A failed rotation leaves the cluster's basis as it was: any orthonormal basis of a
+      // repeated eigenvalue is correct, only its family labels may mix.
+      if (es.info() == Eigen::Success)
+        out.Z.middleCols(i, j - i) = (out.Z.middleCols(i, j - i) * es.eigenvectors()).eval();
+      else
+        out.warnings.push_back(fmt::format("modes {}-{}: the family rotation of a repeated eigenvalue failed; "
+                                           "labels may mix families",
+                                           i + 1, j));
     }
     i = j;
   }

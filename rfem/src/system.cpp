@@ -303,29 +303,6 @@ std::string coordinate_name(const Model& m, const System& sys, long i) {
 }
 
 
-double relative_deformation(const Model& m, const Eigen::VectorXd& q) {
-  const double L = m.length_scale;
-  double motion = 0;
-  for (std::size_t e = 0; e < m.elements.size(); ++e) {
-    const Vector6d v = body_vector(m, q, static_cast<int>(e));
-    motion = std::max(motion, v.head<3>().norm() + L * v.tail<3>().norm());
-  }
-  if (motion == 0) return 0;
-  double worst = 0;
-  for (const Sde& sd : m.sdes) {
-    const Vector6d loc = deformation(m, sd, q);
-    for (int c = 0; c < 6; ++c)
-      if (sd.stiffness[c] != 0) worst = std::max(worst, std::abs(loc[c]) * (c < 3 ? 1.0 : L));
-  }
-  for (const Coupling& cp : m.couplings) {
-    Eigen::VectorXd v(6 * static_cast<long>(cp.elements.size()));
-    for (std::size_t i = 0; i < cp.elements.size(); ++i) v.segment<6>(6 * static_cast<long>(i)) = body_vector(m, q, cp.elements[i]);
-    const double nk = cp.stiffness->norm();
-    if (nk > 0) worst = std::max(worst, (*cp.stiffness * v).norm() / nk * L);
-  }
-  return worst / motion;
-}
-
 RigidModes free_rigid_modes(const Model& m, const System& sys) {
   const double L = m.length_scale;
   const int na = m.dofs_per_element();
@@ -381,6 +358,8 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
     AtA.noalias() += (L / nk) * (L / nk) * (F.transpose() * F);
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(AtA)};
+  if (es.info() != Eigen::Success)
+    throw std::runtime_error("rfem: the eigensolver of the rigid-motion test failed (no convergence)");
   std::vector<long> null_cols;
   for (long i = 0; i < nc; ++i)
     if (std::sqrt(std::max(0.0, es.eigenvalues()[i])) <= 1e-9) null_cols.push_back(i);

@@ -2,6 +2,8 @@
 #define BOOST_TEST_MODULE cli
 #include <boost/test/unit_test.hpp>
 
+#include "temp_dir.hpp"
+
 #include <sys/wait.h>
 
 #include <array>
@@ -102,10 +104,9 @@ BOOST_AUTO_TEST_CASE(list_names_scenes_and_backends) {
 }
 
 BOOST_AUTO_TEST_CASE(compare_writes_a_report) {
-  const auto dir = std::filesystem::temp_directory_path() / "modalbench_cli_report";
-  std::filesystem::remove_all(dir);
+  const modalbench_test::TempDir tmp("modalbench_cli_report");
+  const auto dir = tmp.path();
   const Run r = run("compare " + scene("paper_fixed_beam.toml") + " --out " + dir.string());
   BOOST_TEST_REQUIRE(r.status == 0, r.out);
   for (const char* f : {"index.html", "report.md", "results.json"}) BOOST_TEST(std::filesystem::exists(dir / f), f);
-  std::filesystem::remove_all(dir);
 }

@@ -8,7 +8,9 @@
 
 #include "modalbench/exact/exact.hpp"
 #include "modalbench/harness/comparison.hpp"
+#include "modalbench/harness/files.hpp"
 #include "modalbench/harness/report.hpp"
+#include "temp_dir.hpp"
 
 using namespace modalbench;
 using F = ModeFamily;
@@ -133,7 +135,7 @@ BOOST_AUTO_TEST_CASE(errors_against_exact_and_failures_become_rows) {
   BOOST_REQUIRE(all.size() == 1u);
   const auto& c = all[0];
   BOOST_TEST(c.reference.source == "exact");
-  int manufactured = 0;
+  int manufactured = 0, throwing = 0, nan = 0;
   for (const auto& r : c.runs) {
     if (r.backend == "manufactured") {
       const double n = r.mesh.counts[0];
@@ -147,13 +149,18 @@ BOOST_AUTO_TEST_CASE(errors_against_exact_and_failures_become_rows) {
       BOOST_TEST((r.result.summary.status == Status::NumericalIssue));
       BOOST_TEST(r.result.summary.message.find("deliberate failure") != std::string::npos);
       BOOST_TEST(std::isnan(r.max_frequency_error));
+      ++throwing;
     }
     if (r.backend == "nan") {
       BOOST_TEST(r.failed());  // a NaN never passes as success
       BOOST_TEST(r.result.summary.message.find("non-finite") != std::string::npos);
+      ++nan;
     }
   }
+  // Every back-end has its rows: a missing row fails here instead of skipping its checks.
   BOOST_TEST(manufactured == 3);
+  BOOST_TEST(throwing >= 1);
+  BOOST_TEST(nan >= 1);
   // Errors 3/n^2: 0.19, 0.047, 0.0117 for n = 4, 8, 16. 1 % is never reached; 2 % is, at n = 16.
   BOOST_TEST(std::isnan(time_to_accuracy(c, "manufactured", 1e-2)));
   BOOST_TEST(std::isfinite(time_to_accuracy(c, "manufactured", 2e-2)));
@@ -181,8 +188,8 @@ BOOST_AUTO_TEST_CASE(report_files_agree_with_the_runs) {
   CompareOptions opt;
   opt.quick = true;
   const auto all = run_comparison({beam_scene()}, reg, opt);
-  const auto dir = std::filesystem::temp_directory_path() / "modalbench_test_report";
-  std::filesystem::remove_all(dir);
+  const modalbench_test::TempDir tmp("modalbench_test_report");
+  const auto dir = tmp.path();
   write_report(all, dir.string(), ReportOptions{});
   for (const char* f : {"index.html", "report.md", "runs.csv", "frequencies.csv", "results.json"})
     BOOST_TEST(std::filesystem::exists(dir / f), f);
@@ -191,14 +198,44 @@ BOOST_AUTO_TEST_CASE(report_files_agree_with_the_runs) {
   BOOST_TEST(j["environment"].contains("compiler"));
   const auto& runs = j["scenes"][0]["runs"];
   BOOST_TEST(runs.size() == all[0].runs.size());
+  BOOST_REQUIRE(runs.size() >= 4u);  // exact, three manufactured rungs, the failure
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    BOOST_TEST(runs[i]["backend"] == all[0].runs[i].backend);
-    if (std::isfinite(all[0].runs[i].max_frequency_error))
-      BOOST_TEST(runs[i]["max_frequency_error"].get<double>() == all[0].runs[i].max_frequency_error);
+    const auto& rec = all[0].runs[i];
+    BOOST_TEST(runs[i]["backend"] == rec.backend);
+    // The manufactured runs have an error, the reference none against itself, the failed run
+    // none at all (null).
+    if (rec.backend == "throwing") {
+      BOOST_TEST(runs[i]["max_frequency_error"].is_null());
+    } else {
+      BOOST_REQUIRE(std::isfinite(rec.max_frequency_error));
+      BOOST_TEST(runs[i]["max_frequency_error"].get<double>() == rec.max_frequency_error);
+      if (rec.backend == "exact") BOOST_TEST(rec.max_frequency_error == 0.0);
+    }
   }
   std::ifstream md(dir / "report.md");
   const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   BOOST_TEST(text.find("deliberate failure") != std::string::npos);  // the failed row says why
   BOOST_TEST(text.find("Table 1 of the prism paper") != std::string::npos);
-  std::filesystem::remove_all(dir);
+}
+
+// A folder that cannot be written is an error naming the path and the reason, never "written".
+BOOST_AUTO_TEST_CASE(unwritable_output_is_an_error_with_the_path) {
+  const modalbench_test::TempDir tmp("modalbench_test_unwritable");
+  const auto blocker = tmp / "a_file";
+  write_text_file(blocker.string(), "x");
+  try {
+    write_report({}, (blocker / "report").string(), ReportOptions{});
+    BOOST_ERROR("a report was written below a plain file");
+  } catch (const std::runtime_error& e) {
+    BOOST_TEST(std::string(e.what()).find(blocker.string()) != std::string::npos, e.what());
+  }
+  try {
+    write_text_file((tmp / "no_such_folder" / "x.csv").string(), "x");
+    BOOST_ERROR("a file was written into a missing folder");
+  } catch (const std::runtime_error& e) {
+    BOOST_TEST(std::string(e.what()).find("No such file or directory") != std::string::npos, e.what());
+  }
+  // A full disk: /dev/full accepts the open and fails the write.
+  if (std::filesystem::exists("/dev/full"))
+    BOOST_CHECK_THROW(write_text_file("/dev/full", std::string(1 << 16, 'x')), std::runtime_error);
 }

@@ -35,6 +35,11 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
     *log_abs_det_tdf = l;
   }
   const Mat TdfInvTdd = lu.solve(Mat(Tdd));
+  // Tdf is well conditioned for the short pieces this is meant for (|p| h of order one); a
+  // singular one (a clamped-piece frequency, or a piece far too long) would give noise.
+  if (!(lu.rcond() >= 1e-14))
+    throw std::runtime_error("segment dynamic stiffness: the transfer block Tdf is singular to working precision "
+                             "(segment too long for one exponential, or at a clamped-segment natural frequency)");
   const Mat TdfInv = lu.inverse();
   Mat K(n2, n2);
   K.topLeftCorner(m, m) = TdfInvTdd;

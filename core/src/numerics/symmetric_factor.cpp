@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace modalbench {
 
@@ -20,6 +21,14 @@ SymFactor::SymFactor(const Eigen::MatrixXd& S) {
   }
   use_eig = true;
   eig.compute(S);
+  if (eig.info() != Eigen::Success) {
+    // No trustworthy pivots at all: every one counts as zero (callers treat the block as singular).
+    zero = static_cast<int>(S.rows());
+    min_abs = 0;
+    max_abs = 0;
+    log_abs = -std::numeric_limits<double>::infinity();
+    return;
+  }
   const Eigen::VectorXd ev = eig.eigenvalues();
   const double scale = ev.cwiseAbs().maxCoeff();
   for (Eigen::Index i = 0; i < ev.size(); ++i) {

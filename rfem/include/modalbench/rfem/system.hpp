@@ -76,8 +76,4 @@ struct RigidModes {
 /// the combinations that deform none of them are the free rigid modes.
 RigidModes free_rigid_modes(const Model& model, const System& sys);
 
-/// Largest deformation of any SDE component with nonzero stiffness (translations in m,
-/// rotations times length_scale) under body motion q, relative to the largest motion of an RFE.
-double relative_deformation(const Model& model, const Eigen::VectorXd& q);
-
 }  // namespace modalbench::rfem
