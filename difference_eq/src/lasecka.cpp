@@ -1,3 +1,4 @@
+#include "modalbench/numerics/root_finding.hpp"
 #include "modalbench/difference_eq/lasecka.hpp"
 
 #include <algorithm>
@@ -80,8 +81,7 @@ std::vector<double> eigenvalues(long R) {
       const double lo = a0 * (1.0 - d), hi = std::min(2.0, a0 * (1.0 + d));
       const double flo = f(lo), fhi = f(hi);
       if (flo == 0.0 || fhi == 0.0 || (flo > 0) != (fhi > 0)) {
-        long ev = 0;
-        root = (flo == 0.0) ? lo : (fhi == 0.0 ? hi : detail::brent(f, lo, hi, flo, fhi, ev));
+        root = (flo == 0.0) ? lo : (fhi == 0.0 ? hi : bracketed_root(f, lo, hi, flo, fhi, 2e-300, detail::kRootRelTol).root);
         break;
       }
     }

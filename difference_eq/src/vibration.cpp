@@ -1,4 +1,5 @@
 // Free vibration of the regular discrete beam: the mode count, natural frequencies, mode shapes, residuals.
+#include "modalbench/numerics/root_finding.hpp"
 #include "modalbench/difference_eq/vibration.hpp"
 
 #include <Eigen/Dense>
@@ -178,7 +179,11 @@ Spectrum natural_frequencies(const RegularBeam& beam, MassModel mass, int k) {
       out.determinant_evaluations += 2;
       if (flo == 0.0) root = lo;
       else if (fhi == 0.0) root = hi;
-      else if ((flo > 0) != (fhi > 0)) root = detail::brent(f, lo, hi, flo, fhi, out.determinant_evaluations);
+      else if ((flo > 0) != (fhi > 0)) {
+        const BracketedRoot br = bracketed_root(f, lo, hi, flo, fhi, 2e-300, detail::kRootRelTol);
+        root = br.root;
+        out.determinant_evaluations += br.evaluations;
+      }
       else {
         // No sign change seen (should not happen for a simple root): bisect on the count.
         while (hi - lo > 4e-16 * hi) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "modalbench/numerics/root_finding.hpp"
+
 namespace modalbench {
 
 double relative_error(double value, double reference) {
@@ -30,14 +32,12 @@ Richardson richardson(const std::vector<double>& h, const std::vector<double>& f
   const double target = d32 / d21;
   // g(p) = (h3^p - h2^p) / (h2^p - h1^p) decreases from ~ln-ratio to 0 as p grows.
   auto g = [&](double p) { return (std::pow(h3, p) - std::pow(h2, p)) / (std::pow(h2, p) - std::pow(h1, p)); };
-  double lo = 0.05, hi = 20.0;
-  if (!((g(lo) - target) * (g(hi) - target) < 0)) return r;
-  for (int it = 0; it < 200; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if ((g(lo) - target) * (g(mid) - target) <= 0) hi = mid;
-    else lo = mid;
-  }
-  const double p = 0.5 * (lo + hi);
+  const double lo = 0.05, hi = 20.0;
+  const double glo = g(lo) - target, ghi = g(hi) - target;
+  if (!(glo * ghi < 0)) return r;
+  const BracketedRoot root = bracketed_root([&](double p) { return g(p) - target; }, lo, hi, glo, ghi, 1e-14, 1e-14);
+  if (!root.converged) return r;
+  const double p = root.root;
   const double C = d32 / (std::pow(h3, p) - std::pow(h2, p));
   r.order = p;
   r.value = f3 - C * std::pow(h3, p);

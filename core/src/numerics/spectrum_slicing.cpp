@@ -1,5 +1,7 @@
 #include "modalbench/numerics/spectrum_slicing.hpp"
 
+#include "modalbench/numerics/root_finding.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -58,60 +60,6 @@ std::vector<double> slice_spectrum(const std::function<int(double)>& count, int 
   return out;
 }
 
-namespace {
-
-/// Brent's method (zeroin) on g over [a, b] with g(a), g(b) of opposite signs; stops early
-/// when `stalled` becomes true (g reached its rounding floor).
-template <class G>
-double brent_root(G&& g, double a, double b, double ga, double gb, double tol, const bool& stalled) {
-  double c = a, gc = ga, d = b - a, e = d;
-  for (int iter = 0; iter < 200; ++iter) {
-    if ((gb > 0) == (gc > 0)) {
-      c = a;
-      gc = ga;
-      d = e = b - a;
-    }
-    if (std::abs(gc) < std::abs(gb)) {
-      a = b; b = c; c = a;
-      ga = gb; gb = gc; gc = ga;
-    }
-    const double tol1 = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(b) + 0.5 * tol;
-    const double xm = 0.5 * (c - b);
-    if (std::abs(xm) <= tol1 || gb == 0.0) return b;
-    if (std::abs(e) >= tol1 && std::abs(ga) > std::abs(gb)) {
-      const double s = gb / ga;
-      double p, q;
-      if (a == c) {
-        p = 2.0 * xm * s;
-        q = 1.0 - s;
-      } else {
-        const double qq = ga / gc, r = gb / gc;
-        p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
-        q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-      }
-      if (p > 0) q = -q;
-      p = std::abs(p);
-      if (2.0 * p < std::min(3.0 * xm * q - std::abs(tol1 * q), std::abs(e * q))) {
-        e = d;
-        d = p / q;
-      } else {
-        d = xm;
-        e = d;
-      }
-    } else {
-      d = xm;
-      e = d;
-    }
-    a = b;
-    ga = gb;
-    b += std::abs(d) > tol1 ? d : (xm > 0 ? tol1 : -tol1);
-    gb = g(b);
-    if (stalled) return b;
-  }
-  return b;
-}
-
-}  // namespace
 
 std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
                                             double lambda_hi, double rel_tol, double abs_tol, SliceStats* stats) {
@@ -163,8 +111,10 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
         return signed_det(cd);
       };
       const double tol = std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol);
-      const double root = brent_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol, stalled);
-      found.emplace_back(std::clamp(root, iv.lo, iv.hi), 1);
+      const BracketedRoot root = bracketed_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol,
+                                                8.0 * std::numeric_limits<double>::epsilon(), 200,
+                                                [&] { return stalled; });
+      found.emplace_back(std::clamp(root.root, iv.lo, iv.hi), 1);
       continue;
     }
     const double mid = 0.5 * (iv.lo + iv.hi);

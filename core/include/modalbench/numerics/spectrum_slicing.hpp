@@ -32,8 +32,9 @@ struct CountDet {
 /// Every eigenvalue in [lambda_lo, lambda_hi) of a problem whose `eval(lambda)` gives the
 /// count below lambda and log |det K(lambda)|, with multiplicity, ascending. Bisection on the
 /// count until an interval holds exactly one eigenvalue; that one is then polished by Brent's
-/// method on the signed determinant (-1)^count |det K| (continuous there: `eval` must use one
-/// discretization for every lambda in the range, so that det has no pole and no jump).
+/// method (root_finding.hpp: GSL) on the signed determinant (-1)^count |det K| (continuous
+/// there: `eval` must use one discretization for every lambda in the range, so that det has no
+/// pole and no jump).
 /// Intervals narrower than rel_tol (relative; abs_tol near zero) with several eigenvalues give
 /// them as a repeated value. Throws std::runtime_error if the count is not monotonic.
 std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
