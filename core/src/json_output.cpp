@@ -59,6 +59,48 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
       f.push_back({{"omega_rad_s", num(s.omega_rad_s)}, {"re", num(s.receptance.real())}, {"im", num(s.receptance.imag())}});
     j["frf"] = f;
   }
+  if (!r.mode_shapes.empty()) {
+    const auto& ms = r.mode_shapes;
+    json shapes;
+    json pts = json::array();
+    for (const auto& p : ms.points)
+      pts.push_back(scene.is_beam() ? json::array({p[0]}) : json::array({p[0], p[1]}));
+    shapes["points"] = pts;
+    shapes["normalization"] = ms.normalization;
+    shapes["note"] = ms.note;
+    for (std::size_t c = 0; c < ms.components.size(); ++c) {
+      json per_mode = json::array();
+      for (const auto& mode : ms.values) {
+        json v = json::array();
+        for (double x : mode[c]) v.push_back(num(x));
+        per_mode.push_back(v);
+      }
+      shapes[component_name(ms.components[c])] = per_mode;
+    }
+    json modal;
+    modal["generalized_mass_kg"] = ms.generalized_mass;
+    json part = json::object(), eff = json::object(), sum = json::object();
+    static const char* dir[] = {"x", "y", "z"};
+    for (int d = 0; d < 3; ++d) {
+      if (!ms.directions[d]) continue;
+      json p = json::array(), e = json::array();
+      double total = 0;
+      for (std::size_t k = 0; k < ms.values.size(); ++k) {
+        p.push_back(num(ms.participation[k][d]));
+        e.push_back(num(ms.effective_mass[k][d]));
+        total += ms.effective_mass[k][d];
+      }
+      part[dir[d]] = p;
+      eff[dir[d]] = e;
+      sum[dir[d]] = num(total);
+    }
+    modal["participation_sqrt_kg"] = part;
+    modal["effective_mass_kg"] = eff;
+    modal["effective_mass_sum_kg"] = sum;
+    modal["total_mass_kg"] = num(ms.total_mass);
+    shapes["modal"] = modal;
+    j["mode_shapes"] = shapes;
+  }
   const auto& t = r.summary.timings_s;
   j["timing_s"] = {{"build", t.build}, {"modes", t.modes}, {"statics", t.statics}, {"frf", t.frf},
                    {"total", r.summary.total_time_s}};

@@ -67,6 +67,26 @@ Section rectangular_section(double width, double height) {
   return s;
 }
 
+std::vector<std::array<double, 2>> Scene::shape_points() const {
+  std::vector<std::array<double, 2>> p;
+  if (!request.shapes) return p;
+  const int nx = request.shapes->nx, ny = is_plate() ? request.shapes->ny : 1;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      p.push_back({geometry.length * i / (nx - 1), is_plate() ? geometry.width * j / (ny - 1) : 0.0});
+  return p;
+}
+
+std::vector<int> Scene::shape_components() const {
+  if (is_plate()) return {2, 3, 4};
+  switch (physics) {
+    case Physics::Bending: return {2, 4};
+    case Physics::Planar: return {0, 2, 4};
+    case Physics::Spatial: return {0, 1, 2, 3, 4, 5};
+  }
+  return {};
+}
+
 double Scene::plate_D() const {
   const double h = geometry.height;
   return material.E * h * h * h / (12.0 * (1.0 - material.nu * material.nu));

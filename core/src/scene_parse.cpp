@@ -193,12 +193,40 @@ void read_loads(const Reader& r, const toml::table& root, Scene& s) {
   }
 }
 
-/// [request]: modes, probes, frf.
+/// request.shapes: true (default sampling), false, or { nx = N } (beam) / { nx = N, ny = M } (plate).
+void read_shapes(const Reader& r, const toml::node& n, Scene& s) {
+  const std::string key = "request.shapes";
+  if (auto b = n.as_boolean()) {
+    if (!b->get()) return;
+    ShapeRequest sr;
+    sr.nx = s.is_beam() ? ShapeRequest::kBeamDefaultNx : ShapeRequest::kPlateDefaultNx;
+    sr.ny = s.is_beam() ? 1 : ShapeRequest::kPlateDefaultNy;
+    s.request.shapes = sr;
+    return;
+  }
+  const auto* t = n.as_table();
+  if (!t) r.fail(key, "must be true, false or a table { nx = N" + std::string(s.is_plate() ? ", ny = M }" : " }"));
+  r.only_keys(*t, key, s.is_beam() ? std::set<std::string>{"nx"} : std::set<std::string>{"nx", "ny"});
+  ShapeRequest sr;
+  auto count = [&](const char* k, long def, long hi) {
+    const auto v = r.opt_integer(*t, key, k);
+    const long c = v ? *v : def;
+    if (c < 2 || c > hi) r.fail(key + "." + k, fmt::format("must lie in [2, {}] (got {})", hi, c));
+    return static_cast<int>(c);
+  };
+  sr.nx = count("nx", s.is_beam() ? ShapeRequest::kBeamDefaultNx : ShapeRequest::kPlateDefaultNx, 100001);
+  sr.ny = s.is_beam() ? 1 : count("ny", ShapeRequest::kPlateDefaultNy, 10001);
+  if (static_cast<long>(sr.nx) * sr.ny > 1000000)
+    r.fail(key, fmt::format("{} x {} points exceed the limit of 1e6 sample points", sr.nx, sr.ny));
+  s.request.shapes = sr;
+}
+
+/// [request]: modes, probes, frf, shapes.
 void read_request(const Reader& r, const toml::table& root, Scene& s) {
   if (const toml::node* rn = root.get("request")) {
     auto t = rn->as_table();
     if (!t) r.fail("request", "must be a table");
-    r.only_keys(*t, "request", {"modes", "probes", "frf"});
+    r.only_keys(*t, "request", {"modes", "probes", "frf", "shapes"});
     if (auto k = r.opt_integer(*t, "request", "modes")) {
       if (*k < 0 || *k > 100000) r.fail("request.modes", fmt::format("must lie in [0, 100000] (got {})", *k));
       s.request.modes = static_cast<int>(*k);
@@ -209,6 +237,7 @@ void read_request(const Reader& r, const toml::table& root, Scene& s) {
       for (std::size_t i = 0; i < arr->size(); ++i)
         s.request.probes.push_back(read_point(r, *arr->get(i), fmt::format("request.probes[{}]", i), s));
     }
+    if (const toml::node* sn = t->get("shapes")) read_shapes(r, *sn, s);
     if (const toml::node* fn = t->get("frf")) {
       auto ft = fn->as_table();
       if (!ft) r.fail("request.frf", "must be a table");

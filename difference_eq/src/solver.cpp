@@ -196,6 +196,7 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
       }
       sum.note_backward_error(worst);
     }
+    if (s.request.shapes && !sp.omega_rad_s.empty()) res.mode_shapes = shapes(s, beam, mass, sp.omega_rad_s, sp.rigid);
     sum.timings_s.modes += timer.lap();
   }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "exact_shapes.hpp"
 #include "modalbench/timer.hpp"
 
 namespace modalbench::exact {
@@ -32,12 +33,19 @@ PlateMethod plate_method(const Scene& s, std::string& why) {
   return PlateMethod::None;
 }
 
-/// Modes collected from several families, sorted at the end.
+/// Modes collected from several families (each from its own line), sorted at the end.
+struct ModeEntry {
+  double omega = 0;
+  ModeFamily family = ModeFamily::Unknown;  ///< as reported (Rigid for rigid-body modes)
+  ModeFamily line = ModeFamily::Unknown;    ///< the line (family) that produced it
+  int index = 0;                            ///< within that line; Navier: m
+  int rigid_count = 0;                      ///< of that line; Navier: n
+};
 struct ModeList {
-  std::vector<std::pair<double, ModeFamily>> modes;
+  std::vector<ModeEntry> modes;
   void add(const std::vector<double>& w, int rigid, ModeFamily fam) {
     for (std::size_t i = 0; i < w.size(); ++i)
-      modes.emplace_back(w[i], static_cast<int>(i) < rigid ? ModeFamily::Rigid : fam);
+      modes.push_back({w[i], static_cast<int>(i) < rigid ? ModeFamily::Rigid : fam, fam, static_cast<int>(i), rigid});
   }
   void add(const Frequencies& f, ModeFamily fam) { add(f.omega_rad_s, f.rigid, fam); }
 };
@@ -157,7 +165,8 @@ void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
   switch (pm) {
     case PlateMethod::Navier:
       r.summary.method = "exact Kirchhoff plate, Navier (all edges simply supported)";
-      list.add(navier_frequencies(a, b, D, rho_h, k), 0, ModeFamily::Plate);
+      for (const NavierMode& nm : navier_modes(a, b, D, rho_h, k))
+        list.modes.push_back({nm.omega, ModeFamily::Plate, ModeFamily::Plate, nm.m, nm.n});
       break;
     case PlateMethod::Mindlin:
       r.summary.method = "exact Mindlin plate (all edges simply supported), every branch";
@@ -248,6 +257,97 @@ void solve_plate(const Scene& s, const Options& o, ModeList& list, Result& r, Ti
   }
 }
 
+ModeShapes shapes_frame(const Scene& s) {
+  ModeShapes out;
+  out.points = s.shape_points();
+  out.components = s.shape_components();
+  const Section sec = s.section();
+  out.total_mass = s.is_beam() ? s.material.rho * sec.A * s.geometry.length
+                               : s.material.rho * s.geometry.height * s.geometry.length * s.geometry.width;
+  out.directions = {s.is_beam() && s.physics != Physics::Bending, s.is_beam() && s.physics == Physics::Spatial, true};
+  return out;
+}
+
+/// Index of component `dof` in the shapes' component list (-1: not carried).
+int slot(const ModeShapes& ms, int dof) {
+  for (std::size_t c = 0; c < ms.components.size(); ++c)
+    if (ms.components[c] == dof) return static_cast<int>(c);
+  return -1;
+}
+
+ModeShapes beam_shapes(const Scene& s, const std::vector<ModeEntry>& modes) {
+  ModeShapes out = shapes_frame(s);
+  std::vector<double> xs;
+  for (const auto& p : out.points) xs.push_back(p[0]);
+  for (const auto& e : modes) {
+    std::vector<std::vector<double>> mode(out.components.size(), std::vector<double>(xs.size(), 0.0));
+    std::array<double, 3> gamma{0, 0, 0};
+    LineShape ls;
+    auto put = [&](int dof, const std::vector<double>& v, double sign) {
+      if (const int c = slot(out, dof); c >= 0)
+        for (std::size_t i = 0; i < v.size(); ++i) mode[static_cast<std::size_t>(c)][i] = sign * v[i];
+    };
+    switch (e.line) {
+      case ModeFamily::BendingXZ:
+        ls = bending_shape(bending_xz(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs);
+        put(2, ls.disp, 1.0);
+        put(4, ls.rot, -1.0);  // theta_y = -phi
+        gamma[2] = ls.participation;
+        break;
+      case ModeFamily::BendingXY:
+        ls = bending_shape(bending_xy(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs);
+        put(1, ls.disp, 1.0);
+        put(5, ls.rot, 1.0);  // theta_z = +phi
+        gamma[1] = ls.participation;
+        break;
+      case ModeFamily::Axial:
+        ls = bar_shape(axial_bar(s), s.x0.axial, s.xL.axial, e.omega, xs);
+        put(0, ls.disp, 1.0);
+        gamma[0] = ls.participation;
+        break;
+      case ModeFamily::Torsion:
+        ls = bar_shape(torsion_bar(s), s.x0.torsional, s.xL.torsional, e.omega, xs);
+        put(3, ls.disp, 1.0);
+        break;
+      default: throw std::logic_error("exact beam mode without a line");
+    }
+    out.values.push_back(std::move(mode));
+    out.generalized_mass.push_back(ls.modal_mass);
+    out.participation.push_back(gamma);
+  }
+  out.note = "exact: the null vector of the exact dynamic stiffness at each frequency, the fields between nodes by "
+             "the transfer matrix; modal mass and participation by GSL quadrature of the exact fields; each mode "
+             "belongs to one family (bending x-z, x-y, axial, torsion)";
+  finish_mode_shapes(out);
+  return out;
+}
+
+/// False when the plate's method has no shapes (Mindlin).
+bool plate_shapes(const Scene& s, const std::vector<ModeEntry>& modes, ModeShapes& out) {
+  std::string why;
+  const PlateMethod pm = plate_method(s, why);
+  if (pm == PlateMethod::Mindlin || pm == PlateMethod::None) return false;
+  out = shapes_frame(s);
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
+  const double rho_h = s.material.rho * s.geometry.height, nu = s.material.nu;
+  for (const auto& e : modes) {
+    PlateShape ps;
+    if (pm == PlateMethod::Navier) ps = navier_shape(a, b, rho_h, e.index, e.rigid_count, out.points);
+    else if (pm == PlateMethod::Levy) ps = levy_shape(a, b, D, nu, rho_h, bend(s.y0), bend(s.yB), e.omega, out.points, false);
+    else ps = levy_shape(b, a, D, nu, rho_h, bend(s.x0), bend(s.xL), e.omega, out.points, true);
+    out.values.push_back({ps.w, ps.theta_x, ps.theta_y});
+    out.generalized_mass.push_back(ps.modal_mass);
+    out.participation.push_back({0.0, 0.0, ps.participation});
+  }
+  out.note = pm == PlateMethod::Navier
+                 ? "exact: Navier modes sin(m pi x/a) sin(n pi y/b) in closed form (repeated frequencies: the (m, n) "
+                   "and (n, m) modes, orthogonal)"
+                 : "exact: Levy modes W(y) sin(m pi x/a), W from the null vector of the strip's exact dynamic "
+                   "stiffness and its transfer matrix; modal mass and participation by GSL quadrature";
+  finish_mode_shapes(out);
+  return true;
+}
+
 }  // namespace
 
 Capability ExactSolver::supports(const Scene& s) const {
@@ -281,11 +381,18 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
   if (s.is_beam()) solve_beam(s, list, r, timer);
   else solve_plate(s, o, list, r, timer);
   auto& modes = list.modes;
-  std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.first < y.first; });
+  std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.omega < y.omega; });
   if (static_cast<int>(modes.size()) > s.request.modes) modes.resize(s.request.modes);
-  for (auto& [w, fam] : modes) {
-    r.frequencies_rad_s.push_back(w);
-    r.mode_families.push_back(fam);
+  for (const auto& e : modes) {
+    r.frequencies_rad_s.push_back(e.omega);
+    r.mode_families.push_back(e.family);
+  }
+  if (s.request.shapes && !modes.empty()) {
+    Timer shapes_timer;
+    if (s.is_beam()) r.mode_shapes = beam_shapes(s, modes);
+    else if (!plate_shapes(s, modes, r.mode_shapes))
+      r.summary.warnings.push_back("mode shapes are not computed for the exact Mindlin plate");
+    r.summary.timings_s.modes += shapes_timer.lap();
   }
 }
 

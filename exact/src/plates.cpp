@@ -126,43 +126,48 @@ std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double 
   }
 }
 
-Frequencies levy_frequencies(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb,
-                             int k) {
-  Frequencies result;
-  if (k <= 0) return result;
+LineSystem levy_strip(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb, int m) {
   // Strip m: w = W(y) sin(m pi x / a). Dimensionless y_bar = y / b, W_bar = W / b,
   // lambda_bar = rho h omega^2 b^4 / D, k_bar = m pi b / a. State [W, W', F_w, F_theta] with
   // F_theta = W'' - nu k^2 W (= -M_y b / D) and F_w = -W''' + (2 - nu) k^2 W' (= V_y b^2 / D).
   const double lam_to_bar = rho_h * std::pow(b, 4) / D;
-  auto strip = [&](int m) {
-    const double kb = m * pi * b / a, k2 = kb * kb;
-    LineSystem sys;
-    sys.m = 2;
-    auto sc = [](double v, double f) { return std::isinf(v) ? kInf : v * f; };
-    sys.left_spring = {sc(y0.translational, std::pow(b, 3) / D), sc(y0.rotational, b / D)};
-    sys.right_spring = {sc(yb.translational, std::pow(b, 3) / D), sc(yb.rotational, b / D)};
-    sys.state_matrix = [k2, nu, lam_to_bar](double lambda) {
-      const double lb = lambda * lam_to_bar;
-      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4);
-      A(0, 1) = 1.0;
-      A(1, 0) = nu * k2; A(1, 3) = 1.0;
-      A(2, 0) = k2 * k2 * (1 - nu * nu) - lb; A(2, 3) = -nu * k2;
-      A(3, 1) = 2.0 * (1 - nu) * k2; A(3, 2) = -1.0;
-      return A;
-    };
-    sys.max_wavenumber = [k2, lam_to_bar](double lambda) {
-      return std::sqrt(k2 + std::sqrt(std::abs(lambda) * lam_to_bar)) + 1.0;
-    };
-    return sys;
+  const double kb = m * pi * b / a, k2 = kb * kb;
+  LineSystem sys;
+  sys.m = 2;
+  auto sc = [](double v, double f) { return std::isinf(v) ? kInf : v * f; };
+  sys.left_spring = {sc(y0.translational, std::pow(b, 3) / D), sc(y0.rotational, b / D)};
+  sys.right_spring = {sc(yb.translational, std::pow(b, 3) / D), sc(yb.rotational, b / D)};
+  sys.state_matrix = [k2, nu, lam_to_bar](double lambda) {
+    const double lb = lambda * lam_to_bar;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4);
+    A(0, 1) = 1.0;
+    A(1, 0) = nu * k2; A(1, 3) = 1.0;
+    A(2, 0) = k2 * k2 * (1 - nu * nu) - lb; A(2, 3) = -nu * k2;
+    A(3, 1) = 2.0 * (1 - nu) * k2; A(3, 2) = -1.0;
+    return A;
   };
+  sys.max_wavenumber = [k2, lam_to_bar](double lambda) {
+    return std::sqrt(k2 + std::sqrt(std::abs(lambda) * lam_to_bar)) + 1.0;
+  };
+  return sys;
+}
+
+int levy_strip_count(double a, double D, double nu, double rho_h, double lambda) {
+  int strips = 0;
+  while ((1 - nu * nu) * D * std::pow((strips + 1) * pi / a, 4) < rho_h * lambda) ++strips;
+  return strips;
+}
+
+Frequencies levy_frequencies(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb,
+                             int k) {
+  Frequencies result;
+  if (k <= 0) return result;
   SliceStats st;
   // Strips whose (1 - nu^2) D k^4 exceeds rho h omega^2 have no mode below omega.
   auto count = [&](double lambda) {
     int total = 0;
-    for (int m = 1;; ++m) {
-      const double km = m * pi / a;
-      if ((1 - nu * nu) * D * std::pow(km, 4) >= rho_h * lambda) break;
-      const AssembledLine asmb = assemble(strip(m), lambda);
+    for (int m = 1; m <= levy_strip_count(a, D, nu, rho_h, lambda); ++m) {
+      const AssembledLine asmb = assemble(levy_strip(a, b, D, nu, rho_h, y0, yb, m), lambda);
       st.max_unknowns = std::max<long>(st.max_unknowns, asmb.K.free_dofs());
       total += asmb.K.inertia().negative;
     }
@@ -173,6 +178,17 @@ Frequencies levy_frequencies(double a, double b, double D, double nu, double rho
   result.count_evaluations = st.count_evaluations;
   result.unknowns = st.max_unknowns;
   return result;
+}
+
+std::vector<NavierMode> navier_modes(double a, double b, double D, double rho_h, int k) {
+  std::vector<NavierMode> out;
+  if (k <= 0) return out;
+  const double c = pi * pi * std::sqrt(D / rho_h);
+  for (int m = 1; m <= k; ++m)
+    for (int n = 1; n <= k; ++n) out.push_back({c * (std::pow(m / a, 2) + std::pow(n / b, 2)), m, n});
+  std::stable_sort(out.begin(), out.end(), [](const NavierMode& x, const NavierMode& y) { return x.omega < y.omega; });
+  out.resize(static_cast<std::size_t>(k));
+  return out;
 }
 
 }  // namespace modalbench::exact

@@ -196,6 +196,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
       r.mode_families.push_back(md.family[static_cast<std::size_t>(i)]);
     }
     if (shown < k) sum.warnings.push_back(fmt::format("{} of {} requested modes computed", shown, k));
+    if (s.request.shapes && shown > 0) r.mode_shapes = sample_shapes(s, model, sys, md.Z, shown);
     method += "; modes: " + md.method;
     if (!md.converged) sum.raise(Status::NotConverged, "eigen solve not converged: see warnings");
     else if (md.max_backward_error > 1e-8)

@@ -41,6 +41,38 @@ struct FrfSample {
   std::complex<double> receptance;  ///< w(observe) / Fz(excite), m/N
 };
 
+/// Mode shapes sampled at common points (Scene::shape_points), one per reported frequency,
+/// with their modal quantities. Normalization: unit modal mass of the model the back-end solves
+/// (int rho A (u^2 + v^2 + w^2) + rotary terms dx for a beam, int rho h w^2 (+ rotary) dA for a
+/// plate, phi' M phi for a discrete model), so amplitudes of different back-ends compare; sign:
+/// the translation sample of largest magnitude is positive (a rotation, for a mode without
+/// translation). Repeated frequencies: any orthonormal basis of the eigenspace.
+struct ModeShapes {
+  std::vector<std::array<double, 2>> points;  ///< beam {x, 0}, plate {x, y}, m
+  std::vector<int> components;                ///< dofs::Index 0..5 (u, v, w, theta_x, theta_y, theta_z)
+  /// values[mode][component][point]: m (translations) or rad (rotations) per sqrt(kg) of modal mass.
+  std::vector<std::vector<std::vector<double>>> values;
+  std::string normalization = "mass";
+  std::string note;  ///< how the shapes were obtained (and anything a user should know)
+  /// Per mode: phi' M phi of the reported shape (1 when normalized), kg.
+  std::vector<double> generalized_mass;
+  /// Per mode: participation factors phi' M r_d for unit rigid translations r_x, r_y, r_z, sqrt(kg).
+  std::vector<std::array<double, 3>> participation;
+  /// Per mode: effective modal masses Gamma_d^2 / generalized mass, kg.
+  std::vector<std::array<double, 3>> effective_mass;
+  std::array<bool, 3> directions{};  ///< the translations the model carries (x, y, z)
+  double total_mass = 0;             ///< of the model, kg
+  bool empty() const { return values.empty(); }
+};
+
+/// Component name of a dofs index: u, v, w, theta_x, theta_y, theta_z.
+std::string component_name(int dof);
+
+/// Scales every mode to unit generalized mass, fixes its sign (see ModeShapes), and fills the
+/// effective masses. The back-end fills points, components, values, generalized_mass (of the
+/// raw values), participation (of the raw values), directions and total_mass first.
+void finish_mode_shapes(ModeShapes& shapes);
+
 /// Wall time per quantity, seconds. The same four phases in every back-end: `build` (reading the
 /// scene into the back-end's model: assembly, operators), then the work of each requested
 /// quantity, including the factorizations and checks it needs.
@@ -74,7 +106,7 @@ struct Summary {
   double max_backward_error = kNotMeasured;
   /// Back-end-specific figures, by name (e.g. "iterations", "segment_asymmetry", "series_tail").
   std::vector<std::pair<std::string, double>> diagnostics;
-  PhaseTimes timings_s;
+  PhaseTimes timings_s;  ///< mode shapes are charged to `modes`
   std::vector<std::string> warnings;
   double total_time_s = 0;
 
@@ -93,6 +125,7 @@ struct Result {
   std::vector<ModeFamily> mode_families;  ///< parallel to frequencies_rad_s
   std::vector<Deflection> deflections;    ///< one per requested probe
   std::vector<FrfSample> frf;
+  ModeShapes mode_shapes;  ///< when the scene asks for them (request.shapes)
   Summary summary;
 
   bool ok() const { return summary.status == Status::Success; }

@@ -102,10 +102,18 @@ struct FrfRequest {
   int points = 0;
 };
 
+/// Where mode shapes are sampled: nx evenly spaced points along x (both ends included), and ny
+/// across a plate's width (1 for a beam). `[request] shapes = true` gives the defaults.
+struct ShapeRequest {
+  int nx = 0, ny = 1;
+  static constexpr int kBeamDefaultNx = 41, kPlateDefaultNx = 21, kPlateDefaultNy = 13;
+};
+
 struct Request {
   int modes = 0;
   std::vector<std::array<double, 2>> probes;  ///< beam: {x, 0}; plate: {x, y}
   std::optional<FrfRequest> frf;
+  std::optional<ShapeRequest> shapes;  ///< absent: no shapes are computed (nor paid for)
 };
 
 /// A back-end option as written in the scene (`[backend.NAME]` key = value), as text: the
@@ -136,6 +144,12 @@ struct Scene {
   Section section() const { return rectangular_section(geometry.width, geometry.height); }
   /// Plate flexural rigidity D = E h^3 / (12 (1 - nu^2)), N*m.
   double plate_D() const;
+  /// The points where shapes are sampled (request.shapes; empty without it): beam {x_i, 0},
+  /// plate {x_i, y_j} with x fastest.
+  std::vector<std::array<double, 2>> shape_points() const;
+  /// The components of a shape, as dofs indices 0..5 (u, v, w, theta_x, theta_y, theta_z): beam
+  /// bending {w, theta_y}; planar {u, w, theta_y}; spatial all six; plate {w, theta_x, theta_y}.
+  std::vector<int> shape_components() const;
 };
 
 /// Reads and validates a scene file. Throws InputError (file, key, reason).

@@ -134,11 +134,11 @@ BlockTridiagonal::Inertia BlockTridiagonal::inertia() const {
   return in;
 }
 
-Eigen::VectorXd BlockTridiagonal::solve(const Eigen::VectorXd& f) const {
+Eigen::VectorXd BlockTridiagonal::solve(const Eigen::VectorXd& f, double min_pivot_rel) const {
   const int n = nodes();
   if (f.size() != static_cast<Eigen::Index>(n) * m_) throw std::invalid_argument("right-hand side has the wrong size");
   const Factorization F = factor();
-  if (F.zero > 0 || !(F.min_abs > 1e-14 * F.max_abs))
+  if (F.zero > 0 || !(F.min_abs > min_pivot_rel * F.max_abs))
     throw std::runtime_error("dynamic stiffness matrix is singular to working precision (a mechanism, or omega at a natural frequency)");
   const std::size_t G = F.groups.size();
   // Forward: y_g = f_g - C_{g-1} S_{g-1}^-1 y_{g-1} (C couples group g-1 to g's first node).

@@ -32,8 +32,10 @@ class BlockTridiagonal {
   /// Sylvester inertia by block LDL^T (congruence, so the count is exact up to rounding).
   Inertia inertia() const;
   /// Solves K d = f (f, d: nodes*m vectors; held DOFs get d = 0 and their f is ignored).
-  /// Throws std::runtime_error if K is singular to working precision.
-  Eigen::VectorXd solve(const Eigen::VectorXd& f) const;
+  /// Throws std::runtime_error if a pivot is zero or smaller than min_pivot_rel times the
+  /// largest (singular to working precision; inverse iteration passes 0: near-singular is
+  /// what it wants).
+  Eigen::VectorXd solve(const Eigen::VectorXd& f, double min_pivot_rel = 1e-14) const;
   /// Dense copy of the free part (for tests).
   Eigen::MatrixXd dense_free() const;
 

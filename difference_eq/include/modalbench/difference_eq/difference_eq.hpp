@@ -78,6 +78,11 @@ class DifferenceEqSolver final : public Solver {
                 Result& result) const override;
 
  private:
+  /// Mode shapes at the scene's sample points for the reported frequencies (the first `rigid`
+  /// of them rigid-body modes), normalized in the model's own mass matrix (shapes.cpp).
+  static ModeShapes shapes(const Scene& s, const RegularBeam& beam, MassModel mass, const std::vector<double>& omega,
+                           int rigid);
+
   Config config_;
 };
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "modalbench/exact/types.hpp"
+#include "modalbench/numerics/line_system.hpp"
 
 namespace modalbench::exact {
 
@@ -41,5 +42,19 @@ std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double 
 /// (springs per unit length; pinned = {inf, 0}, clamped = {inf, inf}, free = {0, 0}).
 Frequencies levy_frequencies(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb,
                              int k);
+
+/// A Navier mode w = sin(m pi x / a) sin(n pi y / b).
+struct NavierMode {
+  double omega = 0;  ///< rad/s
+  int m = 0, n = 0;
+};
+/// The k lowest Navier modes, ascending (ties in order of m).
+std::vector<NavierMode> navier_modes(double a, double b, double D, double rho_h, int k);
+
+/// The Levy strip of half-wave number m as a line system on y_bar = y / b in [0, 1]: state
+/// [W_bar, W_bar', F_w, F_theta], W_bar = W / b, lambda = omega^2 (see plates.cpp).
+LineSystem levy_strip(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb, int m);
+/// How many strips m = 1, 2, ... can have a natural frequency below sqrt(lambda).
+int levy_strip_count(double a, double D, double nu, double rho_h, double lambda);
 
 }  // namespace modalbench::exact

@@ -36,6 +36,11 @@
 
 namespace modalbench::rfem {
 
+/// The first `count` modes (columns of Z over z, M-orthonormal) at the scene's shape points,
+/// normalized and with their modal quantities (result.hpp, ModeShapes).
+ModeShapes sample_shapes(const Scene& scene, const Model& model, const System& sys, const Eigen::MatrixXd& Z,
+                         long count);
+
 class RfemSolver final : public Solver {
  public:
   std::string name() const override { return "rfem"; }

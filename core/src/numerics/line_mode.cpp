@@ -1,0 +1,80 @@
+#include "modalbench/numerics/line_mode.hpp"
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "modalbench/numerics/balancing.hpp"
+#include "modalbench/numerics/quadrature.hpp"
+#include "modalbench/numerics/segment_dynamic_stiffness.hpp"
+
+namespace modalbench {
+
+LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
+  if (!(lambda > 0)) throw std::invalid_argument("LineMode: lambda must be > 0 (rigid modes are the caller's)");
+  const double sigma = lambda * (1.0 + 1e-9);
+  // One set of nodes for both assemblies: the segment lengths follow the wavenumbers at lambda.
+  LineSystem fixed = sys;
+  const double p = sys.max_wavenumber(lambda);
+  fixed.max_wavenumber = [p](double) { return p; };
+  const AssembledLine shifted = assemble(fixed, sigma);
+  const long n = static_cast<long>(shifted.xi.size()) * m_;
+  // A deterministic start with every component present.
+  Eigen::VectorXd v(n);
+  for (long i = 0; i < n; ++i) v[i] = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i) + 0.3);
+  for (int step = 0; step < 2; ++step) {
+    v = shifted.K.solve(v, 0.0);
+    const double nv = v.cwiseAbs().maxCoeff();
+    if (!(nv > 0) || !std::isfinite(nv)) throw std::runtime_error("LineMode: inverse iteration broke down");
+    v /= nv;
+  }
+  // The fields at lambda itself, from the nodal displacements (same nodes: one discretization).
+  xi_ = shifted.xi;
+  A_ = sys.state_matrix(lambda);
+  const std::size_t nodes = xi_.size();
+  y_.assign(nodes, Eigen::VectorXd::Zero(2 * m_));
+  for (std::size_t i = 0; i + 1 < nodes; ++i) {
+    const double h = xi_[i + 1] - xi_[i];
+    const Eigen::MatrixXd K = segment_dynamic_stiffness(A_, h);
+    Eigen::VectorXd dd(2 * m_);
+    dd << v.segment(static_cast<long>(i) * m_, m_), v.segment(static_cast<long>(i + 1) * m_, m_);
+    const Eigen::VectorXd fk = K * dd;  // [-f(0); f(h)]
+    y_[i].head(m_) = dd.head(m_);
+    y_[i].tail(m_) = -fk.head(m_);
+    if (i + 2 == nodes) {
+      y_[i + 1].head(m_) = dd.tail(m_);
+      y_[i + 1].tail(m_) = fk.tail(m_);
+    }
+  }
+}
+
+Eigen::MatrixXd LineMode::transfer(double s) const {
+  Eigen::MatrixXd B = A_ * s;
+  const Eigen::VectorXd scale = balance_in_place(B, 20);
+  return scale.asDiagonal() * Eigen::MatrixXd(B.exp()) * scale.cwiseInverse().asDiagonal();
+}
+
+Eigen::VectorXd LineMode::state(double xi) const {
+  if (xi <= xi_.front()) return y_.front();
+  if (xi >= xi_.back()) return y_.back();
+  const auto it = std::upper_bound(xi_.begin(), xi_.end(), xi);
+  const std::size_t i = static_cast<std::size_t>(it - xi_.begin()) - 1;
+  if (xi == xi_[i]) return y_[i];
+  return transfer(xi - xi_[i]) * y_[i];
+}
+
+double LineMode::integrate(const std::function<double(const Eigen::VectorXd& d, double xi)>& g) const {
+  double total = 0;
+  for (std::size_t i = 0; i + 1 < xi_.size(); ++i) {
+    const Eigen::VectorXd y0 = y_[i];
+    const double x0 = xi_[i];
+    total += modalbench::integrate(
+                 [&](double x) { return g((transfer(x - x0) * y0).head(m_), x); }, x0, xi_[i + 1], 1e-12, 1e-300)
+                 .value;
+  }
+  return total;
+}
+
+}  // namespace modalbench

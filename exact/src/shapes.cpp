@@ -1,0 +1,133 @@
+// Exact mode shapes: beams and bars from the null vector of the exact dynamic stiffness and the
+// transfer matrix between nodes (numerics/line_mode.hpp), Navier plates in closed form, Levy
+// plates from their strip's line mode; modal masses and participations by GSL quadrature of the
+// exact fields where no closed form is used.
+
+#include "exact_shapes.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "line_models.hpp"
+#include "modalbench/numerics/line_mode.hpp"
+
+namespace modalbench::exact {
+
+namespace {
+constexpr double pi = std::numbers::pi;
+}  // namespace
+
+LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings right, double omega, int rigid_index,
+                        int rigid_count, const std::vector<double>& xs) {
+  LineShape out;
+  const double L = beam.L;
+  if (omega == 0.0) {
+    // Rigid-body modes of the free beam: a translation and/or a rotation (w' = phi: no shear).
+    const bool rotation_restrained = left.rotational > 0 || right.rotational > 0;
+    bool rotation = false;
+    double pivot = 0.5 * L;
+    if (rigid_count == 2) {
+      rotation = rigid_index == 1;
+    } else if (!rotation_restrained) {
+      rotation = true;
+      pivot = left.translational > 0 ? 0.0 : L;
+    }
+    for (double x : xs) {
+      out.disp.push_back(rotation ? x - pivot : 1.0);
+      out.rot.push_back(rotation ? 1.0 : 0.0);
+    }
+    if (rotation) {
+      const double c0 = -pivot, c1 = L - pivot;  // int (x - pivot)^2 dx over [0, L]
+      out.modal_mass = beam.rhoA * (c1 * c1 * c1 - c0 * c0 * c0) / 3.0 + beam.rhoI * L;
+      out.participation = beam.rhoA * 0.5 * (c1 * c1 - c0 * c0);
+    } else {
+      out.modal_mass = out.participation = beam.rhoA * L;
+    }
+    return out;
+  }
+  detail::BendingLine line(beam, left, right);
+  for (double x : xs) line.sys.nodes_at.push_back(x / L);
+  const LineMode mode(line.sys, omega * omega);
+  for (double x : xs) {
+    const Eigen::VectorXd d = mode.displacement(x / L);
+    out.disp.push_back(d[0] * L);  // w_bar = w / L
+    out.rot.push_back(d[1]);
+  }
+  out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double) {
+    return beam.rhoA * d[0] * d[0] * L * L + beam.rhoI * d[1] * d[1];
+  });
+  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return beam.rhoA * d[0] * L; });
+  return out;
+}
+
+LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega, const std::vector<double>& xs) {
+  LineShape out;
+  const double L = bar.L;
+  if (omega == 0.0) {
+    out.disp.assign(xs.size(), 1.0);
+    out.rot.assign(xs.size(), 0.0);
+    out.modal_mass = out.participation = bar.mu * L;
+    return out;
+  }
+  detail::BarLine line(bar, k_left, k_right);
+  for (double x : xs) line.sys.nodes_at.push_back(x / L);
+  const LineMode mode(line.sys, omega * omega);
+  for (double x : xs) {
+    out.disp.push_back(mode.displacement(x / L)[0]);
+    out.rot.push_back(0.0);
+  }
+  out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return bar.mu * d[0] * d[0]; });
+  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return bar.mu * d[0]; });
+  return out;
+}
+
+PlateShape navier_shape(double a, double b, double rho_h, int m, int n, const std::vector<std::array<double, 2>>& pts) {
+  PlateShape out;
+  for (const auto& p : pts) {
+    const double sx = std::sin(m * pi * p[0] / a), cx = std::cos(m * pi * p[0] / a);
+    const double sy = std::sin(n * pi * p[1] / b), cy = std::cos(n * pi * p[1] / b);
+    out.w.push_back(sx * sy);
+    out.theta_x.push_back(sx * cy * n * pi / b);   // +dw/dy
+    out.theta_y.push_back(-cx * sy * m * pi / a);  // -dw/dx
+  }
+  out.modal_mass = rho_h * a * b / 4.0;
+  out.participation = rho_h * (a / (m * pi)) * (1 - std::cos(m * pi)) * (b / (n * pi)) * (1 - std::cos(n * pi));
+  return out;
+}
+
+PlateShape levy_shape(double a, double b, double D, double nu, double rho_h, EndSprings y0, EndSprings yb,
+                      double omega, const std::vector<std::array<double, 2>>& pts, bool transposed) {
+  // The strip whose count jumps at omega^2 carries the mode.
+  const double lambda = omega * omega;
+  int strip = 0;
+  for (int m = 1; m <= levy_strip_count(a, D, nu, rho_h, lambda * (1 + 1e-8)) && strip == 0; ++m) {
+    const LineSystem sys = levy_strip(a, b, D, nu, rho_h, y0, yb, m);
+    if (count_below(sys, lambda * (1 + 1e-8)) > count_below(sys, lambda * (1 - 1e-8))) strip = m;
+  }
+  if (strip == 0) throw std::runtime_error("Levy plate: no strip has a mode at this frequency");
+  LineSystem sys = levy_strip(a, b, D, nu, rho_h, y0, yb, strip);
+  // In the strip's own axes: along = the simply supported direction (length a), across = y.
+  auto along = [&](const std::array<double, 2>& p) { return transposed ? p[1] : p[0]; };
+  auto across = [&](const std::array<double, 2>& p) { return transposed ? p[0] : p[1]; };
+  for (const auto& p : pts) sys.nodes_at.push_back(across(p) / b);
+  const LineMode mode(sys, lambda);
+  const double k = strip * pi / a;
+  PlateShape out;
+  for (const auto& p : pts) {
+    const Eigen::VectorXd d = mode.displacement(across(p) / b);  // [W / b, dW/dy]
+    const double W = d[0] * b, dW = d[1], s = std::sin(k * along(p)), c = std::cos(k * along(p));
+    const double d_along = W * k * c, d_across = dW * s;  // derivatives of w = W(across) sin(k along)
+    const double dwdx = transposed ? d_across : d_along, dwdy = transposed ? d_along : d_across;
+    out.w.push_back(W * s);
+    out.theta_x.push_back(dwdy);
+    out.theta_y.push_back(-dwdx);
+  }
+  // rho h int sin^2 (a / 2) int W^2 dy, W = b W_bar, dy = b dy_bar.
+  out.modal_mass = rho_h * (a / 2.0) * b * b * b * mode.integrate([](const Eigen::VectorXd& d, double) { return d[0] * d[0]; });
+  out.participation = rho_h * (1 - std::cos(strip * pi)) / k * b * b *
+                      mode.integrate([](const Eigen::VectorXd& d, double) { return d[0]; });
+  return out;
+}
+
+}  // namespace modalbench::exact
