@@ -18,6 +18,7 @@
 #include "modalbench/registry.hpp"
 #include "modalbench/harness/report.hpp"
 #include "modalbench/harness/stability.hpp"
+#include "modalbench/harness/vtk.hpp"
 
 namespace mb = modalbench;
 
@@ -112,6 +113,8 @@ int main(int argc, char** argv) {
   solve->add_option("--option,-o", backend_options,
                     "back-end option KEY=VALUE (repeatable; over the scene's [backend.NAME]; see `modalbench options`)");
   solve->add_flag("--json", json, "print one JSON object (schema in README.md)");
+  std::string vtk_dir;
+  solve->add_option("--vtk", vtk_dir, "write the mode shapes and static deflections as VTK (.vtu) files into DIR");
 
   auto* opts = app.add_subcommand("options", "list a back-end's options with their defaults");
   std::string opts_backend;
@@ -169,6 +172,10 @@ int main(int argc, char** argv) {
         opt.backend.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
       }
       const mb::Result r = solver.solve(scene, mesh, opt);
+      if (!vtk_dir.empty()) {
+        for (const auto& f : mb::write_vtk(scene, backend, r, vtk_dir))
+          (json ? std::cerr : std::cout) << "wrote " << f << "\n";
+      }
       if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
       else print_text(scene, backend, mesh, r);
       if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported) {

@@ -38,6 +38,9 @@ nlohmann::json scene_json(const SceneComparison& c) {
     jr["frf_error_db"] = num(r.frf_error_db);
     jr["frequency_errors"] = nlohmann::json::array();
     for (double e : r.frequency_errors) jr["frequency_errors"].push_back(num(e));
+    jr["pairing"] = r.paired_by_mac ? "mac" : "family order";
+    jr["pair_mac"] = nlohmann::json::array();
+    for (double v : r.pair_mac) jr["pair_mac"].push_back(num(v));
     js["runs"].push_back(jr);
   }
   return js;
@@ -58,21 +61,23 @@ void write_runs_csv(const std::string& path, const std::vector<SceneComparison>&
 }
 
 void write_frequencies_csv(const std::string& path, const std::vector<SceneComparison>& all) {
-  std::string csv = "scene,backend,mesh,mode,family,omega_rad_s,reference_rad_s,reference_uncertainty_rad_s,relative_error\n";
+  std::string csv =
+      "scene,backend,mesh,mode,family,omega_rad_s,reference_rad_s,reference_uncertainty_rad_s,relative_error,mac\n";
   for (const auto& c : all)
     for (const auto& r : c.runs) {
       // Each run's modes with the reference mode they were matched to.
-      const auto m = match_modes(c.reference.families, r.result.mode_families);
+      const auto& m = r.match;
       for (std::size_t i = 0; i < r.result.frequencies_rad_s.size(); ++i) {
-        double refv = kNaN, unc = kNaN, err = kNaN;
+        double refv = kNaN, unc = kNaN, err = kNaN, mac = kNaN;
         for (std::size_t k = 0; k < m.size(); ++k)
           if (m[k] == static_cast<int>(i)) {
             refv = c.reference.frequencies_rad_s[k];
             unc = c.reference.frequency_uncertainty[k];
             err = r.frequency_errors[k];
+            mac = r.pair_mac[k];
           }
-        csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), i + 1,
-                           to_string(r.result.mode_families[i]), r.result.frequencies_rad_s[i], refv, unc, err);
+        csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), i + 1,
+                           to_string(r.result.mode_families[i]), r.result.frequencies_rad_s[i], refv, unc, err, mac);
       }
     }
   write_text_file(path, csv);

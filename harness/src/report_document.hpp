@@ -48,6 +48,16 @@ struct Context {
 /// records why in ctx.problems) on failure.
 std::string plot(Context& ctx, const std::string& name, const std::string& setup, const std::vector<Series>& series);
 
+/// A gnuplot script of the caller's: `data` files (name, content) are written into dir/plots
+/// first, then `body` runs after the SVG terminal and output are set; `body` refers to a data file
+/// by the path data_path(ctx, name). Returns the SVG text or "" (reason in ctx.problems).
+std::string plot_script(Context& ctx, const std::string& name, const std::string& body,
+                        const std::vector<std::pair<std::string, std::string>>& data, const std::string& size = "760,460");
+std::string data_path(const Context& ctx, const std::string& file);
+
+/// The mode-shape section: MAC matrices and overlaid shapes (report_shapes.cpp).
+void write_shapes(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid);
+
 /// Back-end names in the order of their first run.
 std::vector<std::string> backends_of(const SceneComparison& c);
 /// The finest successful run of a back-end, or nullptr.

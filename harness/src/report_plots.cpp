@@ -49,4 +49,29 @@ std::string plot(Context& ctx, const std::string& name, const std::string& setup
   return ss.str();
 }
 
+std::string data_path(const Context& ctx, const std::string& file) {
+  return (fs::path(ctx.dir) / "plots" / file).string();
+}
+
+std::string plot_script(Context& ctx, const std::string& name, const std::string& body,
+                        const std::vector<std::pair<std::string, std::string>>& data, const std::string& size) {
+  const fs::path pdir = fs::path(ctx.dir) / "plots";
+  make_output_dir(pdir.string());
+  for (const auto& [file, content] : data) write_text_file(data_path(ctx, file), content);
+  const fs::path svg = pdir / (name + ".svg"), gp = pdir / (name + ".gp");
+  write_text_file(gp.string(), fmt::format("set terminal svg size {} dynamic enhanced font 'Helvetica,12' background rgb "
+                                           "'white'\nset output '{}'\n{}\n",
+                                           size, svg.string(), body));
+  const std::string out = command_output(ctx.options.gnuplot + " '" + gp.string() + "'");
+  std::ifstream in(svg);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (ss.str().find("<svg") == std::string::npos) {
+    ctx.problems.push_back(
+        fmt::format("plot {} not made (gnuplot: {})", name, out.empty() ? "no output" : out.substr(0, 200)));
+    return "";
+  }
+  return ss.str();
+}
+
 }  // namespace modalbench::report_detail

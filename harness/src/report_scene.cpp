@@ -55,7 +55,8 @@ void write_runs_table(Doc& doc, const SceneComparison& c) {
     const auto& s = r.result.summary;
     std::string msg = s.message;
     if (msg.empty() && !s.warnings.empty()) msg = fmt::format("{} warning(s): {}", s.warnings.size(), s.warnings.front());
-    if (r.matched_by_order) msg = "modes matched by order (no family labels). " + msg;
+    if (r.matched_by_order && !r.paired_by_mac) msg = "modes matched by order (no family labels). " + msg;
+    if (r.low_mac_pairs > 0) msg = fmt::format("{} pair(s) with MAC < {}. ", r.low_mac_pairs, kLowMac) + msg;
     rows.push_back({r.backend, r.mesh.spec(), std::to_string(s.unknowns), to_string(s.status),
                     fmt::format("{} (x{})", num_str(r.median_s), r.repeats), err_str(r.max_frequency_error),
                     err_str(r.deflection_error),
@@ -84,14 +85,19 @@ void write_frequency_table(Doc& doc, const SceneComparison& c) {
     if (c.reference.frequency_uncertainty[i] > 0) refcell += fmt::format(" ± {:.2g}", c.reference.frequency_uncertainty[i]);
     std::vector<std::string> row = {std::to_string(i + 1), to_string(c.reference.families[i]), refcell};
     for (const RunRecord* f : cols) {
-      const auto m = match_modes(c.reference.families, f->result.mode_families);
-      row.push_back(m[i] >= 0 ? fmt::format("{} ({})", num_str(f->result.frequencies_rad_s[m[i]]),
-                                            err_str(f->frequency_errors[i]))
-                              : "—");
+      const auto& m = f->match;
+      std::string cell = "—";
+      if (i < m.size() && m[i] >= 0) {
+        cell = fmt::format("{} ({})", num_str(f->result.frequencies_rad_s[static_cast<std::size_t>(m[i])]),
+                           err_str(f->frequency_errors[i]));
+        if (std::isfinite(f->pair_mac[i]))
+          cell += fmt::format(" MAC {:.4f}{}", f->pair_mac[i], f->pair_mac[i] < kLowMac ? " (LOW)" : "");
+      }
+      row.push_back(cell);
     }
     rows.push_back(row);
   }
-  doc.heading(3, "Frequencies (finest run of each back-end)");
+  doc.heading(3, "Frequencies (finest run of each back-end; relative error and the MAC of the pair)");
   doc.table(head, rows);
 }
 
@@ -226,6 +232,7 @@ void write_scene(Doc& doc, const SceneComparison& c, Context& ctx) {
   write_runs_table(doc, c);
   write_frequency_table(doc, c);
   write_published_table(doc, c);
+  write_shapes(doc, c, ctx, sid);
   write_frf(doc, c, ctx, sid);
   write_deflections(doc, c, ctx, sid);
 }

@@ -35,7 +35,11 @@ struct Reference {
   std::vector<Deflection> deflections;
   std::vector<Deflection> deflection_line;  ///< the exact static deflection on a fine grid (beams)
   std::vector<FrfSample> frf;
+  ModeShapes shapes;  ///< the reference's mode shapes (exact, or the finest run of the extrapolated back-end)
 };
+
+/// MAC below which a pair of modes is flagged (report and runs table).
+inline constexpr double kLowMac = 0.9;
 
 struct RunRecord {
   std::string backend;
@@ -49,6 +53,10 @@ struct RunRecord {
   double deflection_error = kNaN;        ///< max |w - w_ref| / max |w_ref| over probes
   double frf_error_db = kNaN;            ///< median |20 log10(|H| / |H_ref|)| over common samples
   bool matched_by_order = false;         ///< the run had no family labels: modes paired by order
+  bool paired_by_mac = false;            ///< modes paired by MAC on the sampled shapes (else by family order)
+  std::vector<int> match;                ///< per reference mode: the run's mode paired with it (-1: none)
+  std::vector<double> pair_mac;          ///< per reference mode: the MAC of its pair (NaN: no shapes or no pair)
+  int low_mac_pairs = 0;                 ///< pairs among the first min(6, modes) with MAC < kLowMac
   bool failed() const { return result.summary.status != Status::Success; }
 };
 
@@ -65,6 +73,9 @@ struct CompareOptions {
   int max_repeats = 7;
   bool quick = false;           ///< one repeat, short ladders (tests)
   std::ostream* progress = nullptr;
+  /// Mode shapes for MAC pairing: the untimed warm-up run of each rung asks for them (default
+  /// sampling) when the scene does not; the timed repeats never do.
+  bool shapes = true;
   /// Optional extra reference runs (e.g. CalculiX) appended as if they were a back-end.
   std::vector<std::function<std::vector<RunRecord>(const Scene&, std::ostream*)>> extra_references;
 };
