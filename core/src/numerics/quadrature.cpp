@@ -49,6 +49,10 @@ Integral integrate(const std::function<double(double)>& f, double a, double b, d
   out.evaluations = c.evaluations;
   if (c.non_finite) throw std::runtime_error("integrate: the integrand is not finite on [" + std::to_string(a) + ", " +
                                              std::to_string(b) + "]");
+  if (st == GSL_EROUND) {
+    out.rounding_limited = true;
+    return out;
+  }
   if (st != GSL_SUCCESS)
     throw std::runtime_error(std::string("integrate: GSL: ") + gsl_strerror(st) + " (estimated error " +
                              std::to_string(out.abs_error) + ")");
