@@ -62,7 +62,7 @@ std::vector<std::pair<int, double>> point_weights(const Model& m, const Eigen::V
   const double tol = tolerance_length(m);
   const auto [i, tx] = bracket(m.grid.x, P.x(), tol);
   const auto [j, ty] = bracket(m.grid.y, P.y(), tol);
-  if (i >= m.grid.x.size() || j >= m.grid.y.size() || containing_elements(m, P).empty())
+  if (i >= m.grid.x.size() || j >= m.grid.y.size() || std::abs(P.z()) > tol + 0.5 * m.length_scale)
     throw std::invalid_argument(fmt::format("rfem: the point ({}, {}, {}) lies outside the body", P.x(), P.y(), P.z()));
   const std::size_t nx = m.grid.x.size();
   std::vector<std::pair<int, double>> out;
