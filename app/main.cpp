@@ -9,8 +9,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "modalbench/harness/calculix.hpp"
 #include "modalbench/harness/comparison.hpp"
@@ -128,7 +130,15 @@ int main(int argc, char** argv) {
   cmp->add_option("scenes", cmp_scenes, "scene files (default: every built-in scene)");
   cmp->add_option("--out,-o", out_dir, "output directory");
   cmp->add_option("--budget", budget_s, "seconds per scene and back-end for its mesh ladder (default 30)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0) || v > 1e6)
+              return "must be a number of seconds in (0, 1e6] (got '" + text + "')";
+            return "";
+          },
+          "SECONDS", "budget"));
   cmp->add_flag("--quick", quick, "one timing repeat and at most three meshes per back-end");
   std::string reference;
   cmp->add_option("--reference", reference, "add an external 3D reference: calculix (needs ccx)")
@@ -143,7 +153,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help prints and succeeds; every command-line error is invalid input (exit 2).
+    return app.exit(e) == 0 ? 0 : 2;
   }
 
   try {
@@ -229,6 +240,14 @@ int main(int argc, char** argv) {
     }
   } catch (const mb::InputError& e) {
     std::cerr << "modalbench: " << e.what() << "\n";
+    if (*solve && json)  // under --json the answer is always one JSON document
+      std::cout << nlohmann::json{{"status", "invalid-input"},
+                                  {"message", e.what()},
+                                  {"file", e.source()},
+                                  {"key", e.key()},
+                                  {"reason", e.reason()}}
+                       .dump(2)
+                << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "modalbench: " << e.what() << "\n";

@@ -311,11 +311,24 @@ Scene parse_scene(std::string_view text, const std::string& source) {
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "", "cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path.string());
+  namespace fs = std::filesystem;
+  const std::string name = path.string();
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) throw InputError(name, "", "no such file");
+  if (fs::is_directory(st)) throw InputError(name, "", "is a directory, not a scene file (TOML)");
+  if (!fs::is_regular_file(st)) throw InputError(name, "", "is not a regular file (a device or a pipe), not a scene file");
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw InputError(name, "", "cannot read its size: " + ec.message());
+  if (size > kMaxSceneBytes)
+    throw InputError(name, "", fmt::format("{} bytes: larger than a scene file can be ({} bytes at most)", size, kMaxSceneBytes));
+  if (size == 0) throw InputError(name, "", "is empty: a scene needs [scene], [geometry], [material] and [supports]");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(name, "", "cannot open file");
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  if (in.gcount() != static_cast<std::streamsize>(size)) throw InputError(name, "", "could not read the whole file");
+  return parse_scene(text, name);
 }
 
 }  // namespace modalbench

@@ -79,7 +79,41 @@ BOOST_AUTO_TEST_CASE(malformed_scenes_are_rejected) {
   }
   const Run missing = run("solve /nonexistent.toml");
   BOOST_TEST(missing.status == 2);
-  BOOST_TEST(missing.out.find("cannot open file") != std::string::npos);
+  BOOST_TEST(missing.out.find("no such file") != std::string::npos, missing.out);
+}
+
+// Things that are not scene files are named for what they are, without reading them.
+BOOST_AUTO_TEST_CASE(paths_that_are_not_scene_files) {
+  const struct {
+    const char* path;
+    const char* says;
+  } cases[] = {{"/tmp", "is a directory"}, {"/dev/null", "not a regular file"}, {"/dev/zero", "not a regular file"}};
+  for (const auto& c : cases) {
+    const Run r = run(std::string("solve ") + c.path);
+    BOOST_TEST(r.status == 2, c.path);
+    BOOST_TEST(r.out.find(c.says) != std::string::npos, r.out);
+  }
+  // Under --json the answer is one JSON object on stdout, also for a scene that fails to load.
+  const Run j = run("solve /tmp --json", false);
+  BOOST_TEST(j.status == 2);
+  const auto doc = nlohmann::json::parse(j.out);
+  BOOST_TEST(doc["status"] == "invalid-input");
+  BOOST_TEST(doc["file"] == "/tmp");
+}
+
+// Exit codes are the README's 0 / 1 / 2 / 3 for every command-line mistake.
+BOOST_AUTO_TEST_CASE(command_line_mistakes_exit_2) {
+  for (const char* args : {"", "frobnicate", "solve", "compare --budget -1", "compare --budget nan",
+                           "compare --budget 1e400"}) {
+    const Run r = run(args);
+    BOOST_TEST(r.status == 2, "'" << args << "': exit " << r.status << ": " << r.out);
+  }
+  const Run s2 = run("solve " + scene("paper_fixed_beam.toml") + " " + scene("paper_ss_plate.toml"));
+  BOOST_TEST(s2.status == 2);
+  const Run mass = run("solve " + scene("paper_fixed_beam.toml") + " --mass heavy", false);
+  BOOST_TEST(mass.status == 2);
+  BOOST_TEST(mass.out.find("--mass") == std::string::npos, "the error goes to stderr, not stdout: " << mass.out);
+  BOOST_TEST(run("--help").status == 0);
 }
 
 BOOST_AUTO_TEST_CASE(unknown_backend_lists_known_ones) {

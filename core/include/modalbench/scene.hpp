@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -152,7 +153,10 @@ struct Scene {
   std::vector<int> shape_components() const;
 };
 
-/// Reads and validates a scene file. Throws InputError (file, key, reason).
+/// The largest scene file read (a scene is a few kB; anything this large is not one).
+inline constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
+/// Reads and validates a scene file: a regular file of at most kMaxSceneBytes. Throws InputError
+/// (file, key, reason), naming what the path is when it is not a scene file.
 Scene load_scene(const std::filesystem::path& path);
 /// Parses and validates TOML text; `source` names it in messages.
 Scene parse_scene(std::string_view toml_text, const std::string& source);
