@@ -258,6 +258,9 @@ double KktLdlt::smallest_primal_pivot_ratio(long* where) const {
 }
 
 struct PdFactor::Impl : public Eigen::CholmodDecomposition<SpMat, Eigen::Lower> {
+  // CHOLMOD prints its warnings ("not positive definite") on stdout, which would corrupt a JSON
+  // answer; its status reaches us through info() and the factor's `minor` instead.
+  Impl() { this->cholmod().print = 0; }
   bool is_super() const { return this->m_cholmodFactor != nullptr && this->m_cholmodFactor->is_super; }
   cholmod_factor* factor() const { return this->m_cholmodFactor; }
   cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;  // reused by cholmod_solve2

@@ -89,6 +89,11 @@ LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, i
   Eigen::MatrixXd rhs, X;
   for (int level = 0; level < levels; ++level) {
     const SymFactor f(Eigen::MatrixXd(out.K.bottomRightCorner(m, m) + out.K.topLeftCorner(m, m)));
+    // J0 doubles per level: past 2^30 clamped frequencies below omega the count cannot be held
+    // (and omega is far beyond anything the model represents).
+    if (out.clamped_below > (1 << 29))
+      throw std::runtime_error("long segment: more than 2^30 clamped-segment natural frequencies below omega: the "
+                               "frequency is beyond the range of the model (count overflow avoided)");
     out.clamped_below = 2 * out.clamped_below + f.negative;
     out.log_abs_det_tdf = 2 * out.log_abs_det_tdf + f.log_abs;
     if (f.max_abs > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, f.min_abs / f.max_abs);
