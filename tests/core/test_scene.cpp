@@ -220,7 +220,7 @@ BOOST_AUTO_TEST_CASE(syntax_and_files) {
     load_scene("/nonexistent/scene.toml");
   } catch (const InputError& e) {
     BOOST_TEST(e.source() == "/nonexistent/scene.toml");
-    BOOST_TEST(e.reason() == "cannot open file");
+    BOOST_TEST(e.reason() == "no such file");
   }
 }
 
