@@ -116,7 +116,7 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   if (R < 1 || R > RegularBeam::kMaxElements)
     throw InputError("command line", "--mesh",
                      fmt::format("R must satisfy 1 <= R <= {} (got '{}')", RegularBeam::kMaxElements, mesh.spec()));
-  const MassModel mass = options.mass == modalbench::MassModel::Lumped ? MassModel::Lumped : MassModel::Consistent;
+  const MassModel mass = options.mass;
   const StaticMethod static_method = options.resolved.get_choice("static_method") == "piecewise-cubic"
                                          ? StaticMethod::PiecewiseCubic
                                          : StaticMethod::EigenfunctionExpansion;

@@ -13,14 +13,6 @@
 
 namespace modalbench::difference_eq {
 
-MassModel mass_model_from_string(const std::string& s) {
-  if (s == "consistent") return MassModel::Consistent;
-  if (s == "lumped") return MassModel::Lumped;
-  throw std::invalid_argument("mass model must be consistent or lumped (got '" + s + "')");
-}
-
-std::string to_string(MassModel m) { return m == MassModel::Consistent ? "consistent" : "lumped"; }
-
 namespace {
 
 using detail::Chain;

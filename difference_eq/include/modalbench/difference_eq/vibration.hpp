@@ -32,13 +32,12 @@
 #include <vector>
 
 #include "modalbench/difference_eq/regular_beam.hpp"
+#include "modalbench/solver.hpp"
 
 namespace modalbench::difference_eq {
 
-enum class MassModel { Consistent, Lumped };
-/// "consistent" | "lumped"; throws std::invalid_argument otherwise.
-MassModel mass_model_from_string(const std::string& s);
-std::string to_string(MassModel);
+/// The mass model: core's one enum (consistent Hermite or lumped), to_string from core.
+using modalbench::MassModel;
 
 struct Spectrum {
   std::vector<double> omega_rad_s;  ///< ascending; rigid-body modes first, as exact zeros
