@@ -366,7 +366,7 @@ BOOST_AUTO_TEST_CASE(bad_input) {
   RegularBeam b = beam(5, kInf, 0, kInf, 0);
   b.rhoA = 0;
   BOOST_CHECK_THROW(natural_frequencies(b, MassModel::Consistent, 3), std::invalid_argument);
-  BOOST_CHECK_THROW(parse_mass_model("diagonal", "test", "--mass"), InputError);
+  BOOST_CHECK_THROW(modalbench::parse_mass_model("diagonal", "test", "--mass"), modalbench::InputError);
   // More modes than the model has: all of them, no more.
   BOOST_TEST(natural_frequencies(beam(3, kInf, kInf, kInf, kInf), MassModel::Lumped, 10).omega_rad_s.size() == 2u);
 }
