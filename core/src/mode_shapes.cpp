@@ -1,5 +1,6 @@
 // Normalization, sign and modal quantities of sampled mode shapes (result.hpp).
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -26,13 +27,22 @@ void finish_mode_shapes(ModeShapes& s) {
       throw std::runtime_error("mode " + std::to_string(k + 1) + ": generalized mass " + std::to_string(gm) +
                                " is not positive: the shape cannot be mass-normalized");
     double scale = 1.0 / std::sqrt(gm);
-    // The sign: the translation sample of largest magnitude positive (rotations if no translation).
+    // The sign: the translation sample of largest magnitude positive (rotations if no
+    // translation). Ties (an antisymmetric mode's two extremes) go to the first sample within
+    // 1e-6 of the largest magnitude, so the sign does not depend on rounding.
     double big = 0;
     for (bool translations : {true, false}) {
+      double largest = 0;
       for (std::size_t c = 0; c < mode.size(); ++c)
         if ((s.components[c] < 3) == translations)
+          for (double v : mode[c]) largest = std::max(largest, std::abs(v));
+      for (std::size_t c = 0; c < mode.size() && big == 0; ++c)
+        if ((s.components[c] < 3) == translations)
           for (double v : mode[c])
-            if (std::abs(v) > std::abs(big)) big = v;
+            if (std::abs(v) >= (1.0 - 1e-6) * largest && largest > 0) {
+              big = v;
+              break;
+            }
       if (big != 0) break;
     }
     if (big < 0) scale = -scale;

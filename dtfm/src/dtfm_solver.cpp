@@ -1,7 +1,9 @@
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "modalbench/dtfm/dtfm.hpp"
 #include "modalbench/timer.hpp"
@@ -48,6 +50,22 @@ std::vector<OptionSpec> DtfmSolver::option_specs() const {
       {"family_threshold", T::Number, num(c.family_threshold), {}, 0.0, 1.0,
        "beam modes are labelled by family when the rigid-section share of kinetic energy reaches this"},
   };
+}
+
+ModeShapes DtfmSolver::shapes(const Scene& scene, LineAnalysis& la, const ModeList& ml) {
+  const bool beam = scene.is_beam();
+  const std::array<bool, 3> directions = {beam && scene.physics != Physics::Bending,
+                                          beam && scene.physics == Physics::Spatial, true};
+  ModeShapes ms = la.mode_shapes(ml, scene.shape_points(), scene.shape_components(), directions);
+  const auto& g = scene.geometry;
+  ms.total_mass = scene.material.rho * g.length * g.width * g.height;
+  ms.note = std::string("dtfm: null vector of each mode's symmetry-class dynamic stiffness K(omega^2) (rigid modes: "
+                        "its null space at omega = 0; repeated roots: mass-orthonormalized), the exact prism fields "
+                        "between nodes by the transfer matrix, modal mass and participation by GSL quadrature of "
+                        "them; values are the section response at nodes (") +
+            (beam ? "rigid-body fit of the prisms" : "linear in y between strip lines") + ")";
+  finish_mode_shapes(ms);
+  return ms;
 }
 
 void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
@@ -98,6 +116,15 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
     if (!ml.count_consistent) sum.raise(Status::NumericalIssue, "dtfm: " + ml.count_message);
     if (static_cast<int>(ml.omega_rad_s.size()) < k)
       sum.raise(Status::NotConverged, fmt::format("dtfm: only {} of {} modes found", ml.omega_rad_s.size(), k));
+    if (scene.request.shapes && !ml.omega_rad_s.empty()) {
+      try {
+        r.mode_shapes = shapes(scene, la, ml);
+        sum.set_diagnostic("shape_unknowns", static_cast<double>(la.max_shape_unknowns()));
+      } catch (const std::exception& e) {
+        r.mode_shapes = {};
+        sum.raise(Status::NumericalIssue, std::string("dtfm: mode shapes: ") + e.what());
+      }
+    }
     sum.timings_s.modes += timer.lap();
   }
   if (!scene.request.probes.empty()) {

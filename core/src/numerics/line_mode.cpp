@@ -14,7 +14,7 @@ namespace modalbench {
 
 LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
   if (!(lambda > 0)) throw std::invalid_argument("LineMode: lambda must be > 0 (rigid modes are the caller's)");
-  const double sigma = lambda * (1.0 + 1e-9);
+  const double sigma = lambda * (1.0 + 1e-11);
   // One set of nodes for both assemblies: the segment lengths follow the wavenumbers at lambda.
   LineSystem fixed = sys;
   const double p = sys.max_wavenumber(lambda);

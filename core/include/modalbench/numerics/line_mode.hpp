@@ -3,8 +3,9 @@
 // assembled dynamic stiffness K(lambda), and the exact field between the nodes by each
 // segment's transfer matrix, y(xi) = exp(A (xi - xi_i)) y_i, with y = [d; f].
 //
-// The null vector comes from two steps of inverse iteration at lambda (1 + 1e-9) (a relative
-// gap of 1e-9 to the mode against O(1) to the others: its contamination drops to ~1e-18); the
+// The null vector comes from two steps of inverse iteration at lambda (1 + 1e-11) (a relative
+// gap of 1e-11 to the mode against O(1) to the others: its contamination drops to ~1e-22; lambda
+// itself is known to ~1e-13); the
 // forces at a node follow from the segment dynamic stiffness. Requested points are nodes of
 // the assembly (LineSystem::nodes_at), so values there are the null vector itself.
 
@@ -19,7 +20,7 @@ namespace modalbench {
 class LineMode {
  public:
   /// The mode of `sys` at eigenvalue `lambda` (> 0; rigid modes are the caller's). Throws
-  /// std::runtime_error if K(lambda (1 + 1e-9)) cannot be factorized.
+  /// std::runtime_error if K(lambda (1 + 1e-11)) cannot be factorized.
   LineMode(const LineSystem& sys, double lambda);
   /// The state [d; f] (2m entries) at xi in [0, 1] (dimensionless, as the system's).
   Eigen::VectorXd state(double xi) const;

@@ -16,12 +16,18 @@
 //     supports);
 //   - statics: K(0) d = f;
 //   - FRF: K(omega^2) d = f, or with structural damping (stiffness x (1 + i eta)) the complex
-//     solve K(omega^2 / (1 + i eta)) d = f / (1 + i eta).
+//     solve K(omega^2 / (1 + i eta)) d = f / (1 + i eta);
+//   - mode shapes (shapes.cpp): the null vector of the mode's class K(omega^2) (inverse iteration
+//     just off the root; a block of vectors for a repeated root, the null space of K(0) for the
+//     rigid modes) on nodes at the sample positions and at most a base piece apart, the exact field
+//     between nodes by exp(A s) from each node's state [q; f]; modal mass and participation by GSL
+//     quadrature of that field; modes sharing a class and a frequency mass-orthonormalized.
 //
 // Usage:
 //   LineAnalysis la(model);
 //   ModeList modes = la.modes(6);
 //   std::vector<Deflection> d = la.statics(scene.loads, probes);
+//   ModeShapes ms = la.mode_shapes(modes, scene.shape_points(), scene.shape_components(), {false, false, true});
 
 #include <array>
 #include <complex>
@@ -72,12 +78,23 @@ class LineAnalysis {
   /// at an undamped natural frequency is not finite: it is returned as NaN and counted.
   std::vector<std::complex<double>> receptance(std::array<double, 2> excite, std::array<double, 2> observe,
                                                const std::vector<double>& omegas, double eta, int* skipped = nullptr);
+  /// Shapes of the modes `modes` (from modes()) at `points` ((x, y); beams: y unused), the
+  /// section response (PrismModel::section_response) per component (dofs index), with their raw
+  /// generalized masses int q^T M q dx and participations int q^T M r_d dx (r_d: unit rigid
+  /// translation of the section; 0 where `directions` is false). Not normalized and without
+  /// total mass or note: the caller finishes them (finish_mode_shapes). Throws
+  /// std::runtime_error if a null vector or an integral cannot be computed.
+  ModeShapes mode_shapes(const ModeList& modes, const std::vector<std::array<double, 2>>& points,
+                         const std::vector<int>& components, std::array<bool, 3> directions);
   /// Largest |K - K^T| / |K| of the segment matrices computed so far (rounding-small when
   /// the state matrices are Hamiltonian: a check on the operator).
   double max_asymmetry() const { return max_asymmetry_; }
   long evaluations() const { return evaluations_; }
   /// Free DOFs of the largest K(omega^2) assembled so far (the size of the system solved).
   long max_unknowns() const { return max_unknowns_; }
+  /// Free DOFs of the largest K solved for mode shapes (not counted in max_unknowns: shapes
+  /// leave the modes' figures as they are).
+  long max_shape_unknowns() const { return max_shape_unknowns_; }
   int classes() const { return static_cast<int>(lines_.size()); }
 
   struct ClassLine;  // one symmetry class as a scaled line problem (src/analysis_detail.hpp)
@@ -88,6 +105,7 @@ class LineAnalysis {
   std::vector<std::unique_ptr<ClassLine>> lines_;
   double max_asymmetry_ = 0;
   long max_unknowns_ = 0;
+  long max_shape_unknowns_ = 0;
   long evaluations_ = 0;
 
   /// Global nodes and the longest base piece for lambda in [0, lambda_max].
@@ -105,6 +123,9 @@ class LineAnalysis {
   ComplexBlockTridiagonal assemble(const ClassLine& c, std::complex<double> lambda, const Mesh& mesh);
   CountDet count_det(const ClassLine& c, double lambda, const Mesh& mesh);
   double family_share(ClassLine& c, double lambda);
+  /// The shapes of the modes `which` (one class, one lambda; 0: rigid) into `out` (shapes.cpp).
+  void cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
+                      const std::vector<double>& xs, const Eigen::MatrixXd& translations, ModeShapes& out);
 };
 
 }  // namespace modalbench::dtfm

@@ -30,7 +30,8 @@
 // Usage:
 //   DtfmSolver s;
 //   Result r = s.solve(load_scene("scenes/paper_fixed_beam.toml"), Discretization::parse("2x2"), {});
-//   // r.frequencies_rad_s, r.mode_families, r.deflections, r.frf, r.summary
+//   // r.frequencies_rad_s, r.mode_families, r.deflections, r.frf, r.summary; with
+//   // [request] shapes: r.mode_shapes (mass-normalized, LineAnalysis::mode_shapes)
 
 #include <string>
 #include <vector>
@@ -65,6 +66,8 @@ class DtfmSolver final : public Solver {
 
  private:
   ModelOptions options_;
+  /// Mass-normalized shapes of the modes `ml` (scene.request.shapes; src/dtfm_solver.cpp).
+  static ModeShapes shapes(const Scene& scene, LineAnalysis& la, const ModeList& ml);
 };
 
 }  // namespace modalbench::dtfm

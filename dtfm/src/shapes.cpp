@@ -1,0 +1,341 @@
+// LineAnalysis mode shapes. Each mode belongs to one symmetry class; in that class's line the
+// mode is the null vector of the assembled K(omega^2), found by inverse iteration just off the
+// root (a block of vectors when the class has the root more than once; for the rigid modes the
+// null space of K(0), by inverse iteration at a small negative lambda) on nodes at the sample
+// positions. Inside each gap the displacements at every base-piece node follow by running the
+// doubling's condensation backwards; a base piece's transfer matrix exp(A s) is well
+// conditioned, so the state y = [q; f] at its left node (f from its dynamic stiffness) gives
+// the exact field of the prism ODE anywhere in it. Modal masses int q^T A02 q dx and
+// participations int q^T A02 r_d dx are GSL quadratures of that field; the sampled values are
+// the section response of the nodal fields (rigid-body fit of a beam's prisms, linear in y
+// between a plate's strip lines).
+#include "modalbench/dtfm/analysis.hpp"
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "analysis_detail.hpp"
+#include "modalbench/numerics/balancing.hpp"
+#include "modalbench/numerics/quadrature.hpp"
+#include "modalbench/numerics/segment_dynamic_stiffness.hpp"
+#include "modalbench/numerics/symmetric_factor.hpp"
+
+namespace modalbench::dtfm {
+
+namespace {
+
+using detail::to_fields;
+
+/// Relative distance below which two roots of one class are one (repeated) eigenvalue.
+constexpr double kSameRoot = 1e-8;
+/// Inverse iteration shift above a root, relative.
+constexpr double kShift = 1e-10;
+constexpr int kInverseSteps = 2;
+
+double component(const Deflection& d, int dof) {
+  switch (dof) {
+    case 0: return d.u;
+    case 1: return d.v;
+    case 2: return d.w;
+    case 3: return d.theta_x;
+    case 4: return d.theta_y;
+    case 5: return d.theta_z;
+    default: throw std::invalid_argument(fmt::format("dtfm: no shape component {}", dof));
+  }
+}
+
+/// exp(A s) of one state matrix (balanced), memoized by s: segments of one length share their
+/// quadrature abscissae, so each distinct s is exponentiated once.
+class Transfer {
+ public:
+  explicit Transfer(Eigen::MatrixXd A) : A_(std::move(A)) {}
+  const Eigen::MatrixXd& operator()(double s) {
+    if (const auto it = memo_.find(s); it != memo_.end()) return it->second;
+    Eigen::MatrixXd B = A_ * s;
+    const Eigen::VectorXd d = balance_in_place(B, 20);
+    Eigen::MatrixXd T = d.asDiagonal() * Eigen::MatrixXd(B.exp()) * d.cwiseInverse().asDiagonal();
+    return memo_.emplace(s, std::move(T)).first->second;
+  }
+
+ private:
+  Eigen::MatrixXd A_;
+  std::map<double, Eigen::MatrixXd> memo_;
+};
+
+/// Sorted distinct values (to a tolerance).
+std::vector<double> distinct(std::vector<double> v, double tol) {
+  std::sort(v.begin(), v.end());
+  std::vector<double> out;
+  for (double x : v)
+    if (out.empty() || x - out.back() > tol) out.push_back(x);
+  return out;
+}
+
+/// A gap between two nodes as a long segment of 2^levels base pieces: K[j] is the dynamic
+/// stiffness of a piece of length h / 2^j (K[0] the gap's, K[levels] the base piece's), built
+/// by doubling exactly as the assembly builds it; S[j - 1] (j >= 1) the factorized middle block
+/// K[j]_22 + K[j]_11 joining two pieces of length h / 2^j.
+struct Gap {
+  double h = 0, h_base = 0;
+  int levels = 0;
+  std::vector<Eigen::MatrixXd> K;
+  std::vector<SymFactor> S;
+  double min_pivot_rel = 1;  ///< of the middle blocks (a conditioning hint, as LongSegment's)
+};
+
+Gap make_gap(const Eigen::MatrixXd& A, double h, double h_base) {
+  Gap g;
+  g.h = h;
+  g.levels = std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+  g.h_base = std::ldexp(h, -g.levels);
+  for (int j = 0; j <= g.levels; ++j) {
+    const LongSegment seg = long_segment_dynamic_stiffness(A, std::ldexp(h, -j), g.levels - j);
+    g.K.push_back(seg.K);
+    if (j == 0) g.min_pivot_rel = seg.min_pivot_rel;
+  }
+  const Eigen::Index m = A.rows() / 2;
+  for (int j = 1; j <= g.levels; ++j)
+    g.S.emplace_back(Eigen::MatrixXd(g.K[j].bottomRightCorner(m, m) + g.K[j].topLeftCorner(m, m)));
+  return g;
+}
+
+/// Displacements at the 2^levels - 1 interior nodes of a gap from those at its ends: the middle
+/// node of a piece of length h / 2^j solves S[j] d_mid = -(K21 d_left + K12 d_right) with
+/// K = K[j + 1] (its halves): the condensation of the doubling, run backwards.
+std::vector<Eigen::MatrixXd> interior(const Gap& g, const Eigen::MatrixXd& left, const Eigen::MatrixXd& right) {
+  const std::size_t n = std::size_t{1} << g.levels;
+  std::vector<Eigen::MatrixXd> d(n + 1);
+  d[0] = left;
+  d[n] = right;
+  const Eigen::Index m = left.rows();
+  for (int j = 0; j < g.levels; ++j) {
+    const std::size_t step = n >> j, half = step / 2;
+    const Eigen::MatrixXd& K = g.K[static_cast<std::size_t>(j) + 1];
+    for (std::size_t k = 0; k < n; k += step)
+      d[k + half] = -g.S[static_cast<std::size_t>(j)].solve(K.bottomLeftCorner(m, m) * d[k] +
+                                                           K.topRightCorner(m, m) * d[k + step]);
+  }
+  return {d.begin() + 1, d.end() - 1};
+}
+
+}  // namespace
+
+ModeShapes LineAnalysis::mode_shapes(const ModeList& modes, const std::vector<std::array<double, 2>>& points,
+                                     const std::vector<int>& components, std::array<bool, 3> directions) {
+  ModeShapes out;
+  out.points = points;
+  out.components = components;
+  out.directions = directions;
+  const std::size_t n = modes.omega_rad_s.size();
+  if (modes.cls.size() != n) throw std::logic_error("dtfm: mode_shapes needs the class of every mode");
+  out.values.assign(n, {});
+  out.generalized_mass.assign(n, 0.0);
+  out.participation.assign(n, {0.0, 0.0, 0.0});
+  if (n == 0 || points.empty()) return out;
+  const double L = model_.length;
+  std::vector<double> xs;
+  for (const auto& p : points) xs.push_back(std::clamp(p[0], 0.0, L));
+  xs = distinct(xs, 1e-12 * L);
+  // Unit rigid translations of the section over the fields (columns x, y, z).
+  const int m = model_.m;
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, 3);
+  for (int d = 0; d < 3; ++d) {
+    if (!directions[d]) continue;
+    if (model_.kind == SceneKind::Plate) {
+      for (int k = 0; k < m; ++k)
+        if (model_.field_dof[k] == d) R(k, d) = 1.0;
+    } else {
+      R.col(d) = model_.rigid_motions.col(d);
+    }
+  }
+  // Modes of one class at one root (all rigid ones of a class: root 0) are solved together.
+  struct Cluster {
+    int cls;
+    double lambda;
+    std::vector<std::size_t> modes;
+  };
+  std::vector<Cluster> clusters;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double lam = k < static_cast<std::size_t>(modes.rigid) ? 0.0 : modes.omega_rad_s[k] * modes.omega_rad_s[k];
+    Cluster* hit = nullptr;
+    for (auto& c : clusters)
+      if (c.cls == modes.cls[k] && std::abs(c.lambda - lam) <= kSameRoot * std::max(c.lambda, lam)) hit = &c;
+    if (hit) hit->modes.push_back(k);
+    else clusters.push_back({modes.cls[k], lam, {k}});
+  }
+  for (const auto& c : clusters) {
+    if (c.cls < 0 || c.cls >= classes()) throw std::logic_error("dtfm: mode_shapes: a mode without a class");
+    cluster_shapes(*lines_[static_cast<std::size_t>(c.cls)], c.lambda, c.modes, xs, R, out);
+  }
+  return out;
+}
+
+void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
+                                  const std::vector<double>& xs, const Eigen::MatrixXd& translations,
+                                  ModeShapes& out) {
+  const int mc = c.mc;
+  const auto p = static_cast<Eigen::Index>(which.size());
+  const bool rigid = lambda == 0.0;
+  const Eigen::MatrixXd A = c.state(lambda);
+  // Nodes at the sample positions; each gap a long segment of 2^levels base pieces. A gap whose
+  // condensed middle blocks are nearly singular at lambda (a sub-piece's clamped frequency)
+  // is split (as count_det does), so that the interior recovery below stays well conditioned.
+  Mesh mesh = mesh_for(c, lambda, xs);
+  std::vector<Gap> gaps;
+  for (int attempt = 0;; ++attempt) {
+    gaps.clear();
+    double worst = 1.0;
+    for (std::size_t g = 0; g + 1 < mesh.x.size(); ++g) {
+      const double h = mesh.x[g + 1] - mesh.x[g];
+      if (std::any_of(gaps.begin(), gaps.end(), [&](const Gap& e) { return std::abs(h - e.h) <= 1e-9 * h; })) continue;
+      gaps.push_back(make_gap(A, h, mesh.h_base));
+      worst = std::min(worst, gaps.back().min_pivot_rel);
+    }
+    if (worst >= 1e-10 || attempt >= 4) break;
+    mesh = refined(mesh);
+  }
+  const int nc = static_cast<int>(mesh.x.size());
+  const Eigen::Index N = static_cast<Eigen::Index>(nc) * mc;
+
+  // The null space by inverse iteration (orthonormalized block), just above the root (below 0
+  // for the rigid modes: K is then positive definite, the rigid motions its smallest part).
+  const double shift = rigid ? -kRigidThreshold * model_.lambda_scale : lambda * (1.0 + kShift);
+  const long unknowns_before = max_unknowns_;
+  const Assembled a = assemble(c, shift, mesh);
+  max_shape_unknowns_ = std::max<long>(max_shape_unknowns_, a.K.free_dofs());
+  max_unknowns_ = unknowns_before;  // the size of the modes' systems, as without shapes
+  Eigen::MatrixXd V(N, p);
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (Eigen::Index j = 0; j < p; ++j)
+      V(i, j) = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i) + 0.3 + 1.1 * static_cast<double>(j));
+  for (int step = 0; step < kInverseSteps; ++step) {
+    for (Eigen::Index j = 0; j < p; ++j) V.col(j) = a.K.solve(Eigen::VectorXd(V.col(j)), 0.0);
+    if (!V.allFinite() || V.norm() == 0.0)
+      throw std::runtime_error(fmt::format("inverse iteration broke down at omega^2 = {:.6g}", lambda));
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(V);
+    V = qr.householderQ() * Eigen::MatrixXd::Identity(N, p);
+  }
+
+  // Displacements at every base-piece node (class coordinates; the end nodes' in the ends'
+  // bases), the gaps' interiors by condensation at lambda, and the state [q; f] at each node
+  // (f from the base piece's dynamic stiffness).
+  std::vector<Eigen::MatrixXd> D, Y;
+  std::vector<const Gap*> piece;  // per fine segment: its gap (base piece length and matrix)
+  for (int i = 0; i < nc; ++i) {
+    Eigen::MatrixXd d = V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
+    if (i == 0) d = c.ends[0].B * d;
+    if (i == nc - 1) d = c.ends[1].B * d;
+    if (i == 0) {
+      D.push_back(d);
+      continue;
+    }
+    const double h = mesh.x[i] - mesh.x[i - 1];
+    const Gap* gap = &gaps.front();
+    for (const auto& e : gaps)
+      if (std::abs(h - e.h) <= 1e-9 * h) gap = &e;
+    const std::vector<Eigen::MatrixXd> inner = interior(*gap, D.back(), d);
+    const std::size_t pieces = inner.size() + 1;
+    for (std::size_t k = 0; k < pieces; ++k) {
+      D.push_back(k + 1 == pieces ? d : inner[k]);
+      piece.push_back(gap);
+    }
+  }
+  const int nn = static_cast<int>(D.size());
+  Y.assign(static_cast<std::size_t>(nn), Eigen::MatrixXd(2 * mc, p));
+  for (int i = 0; i + 1 < nn; ++i) {
+    Eigen::MatrixXd dd(2 * mc, p);
+    dd << D[i], D[i + 1];
+    const Eigen::MatrixXd fk = piece[i]->K.back() * dd;  // [-f(0); f(h)]
+    Y[i] << D[i], -fk.topRows(mc);
+    if (i + 2 == nn) Y[i + 1] << D[i + 1], fk.bottomRows(mc);
+  }
+
+  // Gram matrix int q_a^T M q_b dx and participations int q_a^T M r_d dx, segment by segment.
+  const Eigen::MatrixXd Mq = c.W.transpose() * model_.M * c.W;
+  const Eigen::MatrixXd Rc = c.W.transpose() * model_.M * translations;
+  Transfer T(A);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(p, p), Gamma = Eigen::MatrixXd::Zero(p, 3);
+  std::vector<int> dirs;
+  for (int dir = 0; dir < 3; ++dir)
+    if (Rc.col(dir).norm() > 1e-14 * Rc.norm()) dirs.push_back(dir);  // the class moves in dir
+  for (int i = 0; i + 1 < nn; ++i) {
+    const double h = piece[i]->h_base;
+    // The field q (and M q) at the quadrature abscissae, shared by the integrands of this segment.
+    std::map<double, std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> field;
+    auto at = [&](double s) -> const std::pair<Eigen::MatrixXd, Eigen::MatrixXd>& {
+      if (const auto it = field.find(s); it != field.end()) return it->second;
+      Eigen::MatrixXd d = T(s).topRows(mc) * Y[i];
+      Eigen::MatrixXd md = Mq * d;
+      return field.emplace(s, std::make_pair(std::move(d), std::move(md))).first->second;
+    };
+    // Absolute tolerance on the natural scale of each integrand (a cross term or a
+    // participation may cancel within a segment: GSL cannot reach a relative one there).
+    const double size = std::max({D[i].norm(), D[i + 1].norm(), at(0.5 * h).first.norm()});
+    auto integral = [&](auto&& g, double scale) {
+      return integrate([&](double s) { return g(at(s)); }, 0.0, h, 1e-12, 1e-12 * h * scale).value;
+    };
+    using Field = std::pair<Eigen::MatrixXd, Eigen::MatrixXd>;
+    for (Eigen::Index u = 0; u < p; ++u) {
+      for (Eigen::Index v = u; v < p; ++v) {
+        G(u, v) += integral([&](const Field& f) { return f.first.col(u).dot(f.second.col(v)); },
+                            Mq.norm() * size * size);
+        G(v, u) = G(u, v);
+      }
+      for (int dir : dirs)
+        Gamma(u, dir) += integral([&](const Field& f) { return Rc.col(dir).dot(f.first.col(u)); },
+                                  Rc.col(dir).norm() * size);
+    }
+  }
+
+  // Several modes: mass-orthonormalized (G = L L^T, basis V L^-T), which keeps the first.
+  Eigen::MatrixXd Cb = Eigen::MatrixXd::Identity(p, p);
+  if (p > 1) {
+    Eigen::LLT<Eigen::MatrixXd> llt(G);
+    if (llt.info() != Eigen::Success)
+      throw std::runtime_error(
+          fmt::format("the {} modes at omega^2 = {:.6g} are not independent in the mass", p, lambda));
+    Cb = llt.matrixU().solve(Eigen::MatrixXd::Identity(p, p));
+  }
+  const Eigen::MatrixXd Gn = Cb.transpose() * G * Cb, Gamman = Cb.transpose() * Gamma;
+
+  // Samples: the section response of the nodal fields (sample positions are nodes).
+  auto node = [&](double xx) {
+    for (int i = 0; i < nc; ++i)
+      if (std::abs(mesh.x[i] - xx) <= 1e-9 * model_.length) return i;
+    throw std::logic_error(fmt::format("dtfm: shape sample x = {} is not a node", xx));
+  };
+  std::vector<std::vector<Eigen::VectorXd>> q(static_cast<std::size_t>(p));
+  for (Eigen::Index u = 0; u < p; ++u) q[u] = to_fields(c, Eigen::VectorXd(V.col(u)), nc);
+  const std::size_t np = out.points.size(), ncomp = out.components.size();
+  std::vector<Eigen::MatrixXd> raw(ncomp, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p));
+  for (std::size_t s = 0; s < np; ++s) {
+    const auto& pt = out.points[s];
+    const int i = node(std::clamp(pt[0], 0.0, model_.length));
+    for (Eigen::Index u = 0; u < p; ++u) {
+      const Deflection d = model_.section_response(q[u][i], pt[1]);
+      for (std::size_t k = 0; k < ncomp; ++k)
+        raw[k](static_cast<Eigen::Index>(s), u) = component(d, out.components[k]);
+    }
+  }
+  for (Eigen::Index j = 0; j < p; ++j) {
+    const std::size_t mode = which[static_cast<std::size_t>(j)];
+    auto& vals = out.values[mode];
+    vals.assign(ncomp, std::vector<double>(np, 0.0));
+    for (std::size_t k = 0; k < ncomp; ++k) {
+      const Eigen::VectorXd col = raw[k] * Cb.col(j);
+      for (std::size_t s = 0; s < np; ++s) vals[k][s] = col[static_cast<Eigen::Index>(s)];
+    }
+    out.generalized_mass[mode] = Gn(j, j);
+    for (int dir = 0; dir < 3; ++dir) out.participation[mode][dir] = Gamman(j, dir);
+  }
+}
+
+}  // namespace modalbench::dtfm
