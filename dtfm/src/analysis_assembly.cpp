@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "analysis_detail.hpp"
+#include "modalbench/numerics/segment_dynamic_stiffness.hpp"
 
 namespace modalbench::dtfm {
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "modalbench/dtfm/analysis.hpp"
+#include "modalbench/numerics/block_tridiagonal.hpp"
 
 namespace modalbench::dtfm {
 

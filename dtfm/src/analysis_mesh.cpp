@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "analysis_detail.hpp"
+#include "modalbench/numerics/balancing.hpp"
 
 namespace modalbench::dtfm {
 

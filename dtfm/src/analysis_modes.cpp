@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "analysis_detail.hpp"
+#include "modalbench/numerics/line_system.hpp"
 
 namespace modalbench::dtfm {
 

@@ -24,6 +24,7 @@
 
 #include "analysis_detail.hpp"
 #include "modalbench/numerics/balancing.hpp"
+#include "modalbench/numerics/line_system.hpp"
 #include "modalbench/numerics/quadrature.hpp"
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
 #include "modalbench/numerics/symmetric_factor.hpp"

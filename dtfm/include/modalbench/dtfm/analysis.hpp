@@ -1,7 +1,7 @@
 #pragma once
-// Solving a prism model along x by segment dynamic stiffness (line_dsm.hpp): each symmetry
-// class of the fields is a Hamiltonian line problem. Global nodes sit only where they are
-// needed (ends, loads, probes, observation points, on a common spacing when these are
+// Solving a prism model along x by segment dynamic stiffness (core's numerics kernels):
+// each symmetry class of the fields is a Hamiltonian line problem. Global nodes sit only where
+// they are needed (ends, loads, probes, observation points, on a common spacing when these are
 // commensurate); each segment's dynamic stiffness is built by doubling from a base piece short
 // enough that exp(A h) is well conditioned and has no clamped natural frequency below the
 // largest omega of interest (|p| h <= 1 for every wavenumber p of A at omega = 0 and at
@@ -36,7 +36,8 @@
 #include <vector>
 
 #include "modalbench/dtfm/prism_model.hpp"
-#include "modalbench/line_dsm.hpp"
+#include "modalbench/numerics/complex_block_tridiagonal.hpp"
+#include "modalbench/numerics/spectrum_slicing.hpp"
 
 namespace modalbench::dtfm {
 
