@@ -196,23 +196,10 @@ std::vector<SolidMesh> calculix_ladder(const Scene& s) {
   return l;
 }
 
-RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& exe, const std::string& work_dir) {
-  RunRecord rec;
-  rec.backend = "calculix";
-  rec.mesh.counts = {m.nx, m.ny, m.nz};
-  rec.repeats = 1;
-  Result& r = rec.result;
-  r.summary.method = fmt::format("CalculiX C3D20R {}x{}x{} (20-node bricks, reduced integration)", m.nx, m.ny, m.nz);
-  const std::string why = calculix_unsupported_reason(s);
-  if (!why.empty()) {
-    r.summary.raise(Status::Unsupported, why);
-    return rec;
-  }
-  make_output_dir(work_dir);
-  std::string name;
-  for (char c : s.name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  name += fmt::format("_{}x{}x{}", m.nx, m.ny, m.nz);
-  const Grid g = make_grid(s, m);
+namespace {
+
+/// The 20-node brick model of the scene as a CalculiX input deck; `held` counts the restrained DOFs.
+std::string brick_input(const Scene& s, const SolidMesh& m, const Grid& g, long& held) {
   const int n_nodes = static_cast<int>(g.xyz.size());
   std::ostringstream inp;
   inp << "** modalbench: " << s.name << " (" << s.source << ")\n*NODE, NSET=NALL\n";
@@ -237,7 +224,7 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
   inp << fmt::format("*MATERIAL, NAME=M\n*ELASTIC\n{:.12g}, {:.12g}\n*DENSITY\n{:.12g}\n", s.material.E, s.material.nu,
                      s.material.rho);
   inp << "*SOLID SECTION, ELSET=EALL, MATERIAL=M\n*BOUNDARY\n";
-  int held = 0;
+  held = 0;
   auto hold = [&](int node, int first, int last) {
     inp << fmt::format("{}, {}, {}\n", node, first, last);
     held += last - first + 1;
@@ -276,25 +263,13 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
   }
   const int k = std::max(1, s.request.modes) * (s.is_beam() ? 3 : 2) + 4;
   inp << fmt::format("*STEP\n*FREQUENCY\n{}\n*NODE PRINT, NSET=NALL\nU\n*END STEP\n", k);
-  write_text_file((fs::path(work_dir) / (name + ".inp")).string(), inp.str());
-  r.summary.unknowns = 3L * n_nodes - held;
+  return inp.str();
+}
 
-  const auto t0 = std::chrono::steady_clock::now();
-  int st = 0;
-  const std::string log =
-      run_command(fmt::format("cd '{}' && OMP_NUM_THREADS=1 '{}' -i '{}' > '{}.log'", work_dir, exe, name, name), st);
-  rec.median_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.summary.total_time_s = rec.median_s;
-  r.summary.timings_s.modes = rec.median_s;  // one ccx run computes the modes only
-  std::ifstream dat(fs::path(work_dir) / (name + ".dat"));
-  if (st != 0 || !dat) {
-    r.summary.raise(Status::NumericalIssue, fmt::format("ccx failed (status {}); see {}/{}.log", st, work_dir, name));
-    return rec;
-  }
-  // Parse the eigenvalue table, then one displacement block per mode.
+/// Reads the eigenvalue table and one displacement block per mode from a ccx .dat file.
+void read_dat(std::istream& dat, int n_nodes, std::vector<double>& omega,
+              std::vector<std::vector<std::array<double, 3>>>& shapes) {
   std::string line;
-  std::vector<double> omega;
-  std::vector<std::vector<std::array<double, 3>>> shapes;
   bool in_table = false;
   while (std::getline(dat, line)) {
     if (line.find("E I G E N V A L U E   O U T P U T") != std::string::npos) {
@@ -316,6 +291,47 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
       if (node >= 1 && node <= n_nodes) shapes.back()[node - 1] = {v[1], v[2], v[3]};
     }
   }
+}
+
+}  // namespace
+
+RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& exe, const std::string& work_dir) {
+  RunRecord rec;
+  rec.backend = "calculix";
+  rec.mesh.counts = {m.nx, m.ny, m.nz};
+  rec.repeats = 1;
+  Result& r = rec.result;
+  r.summary.method = fmt::format("CalculiX C3D20R {}x{}x{} (20-node bricks, reduced integration)", m.nx, m.ny, m.nz);
+  const std::string why = calculix_unsupported_reason(s);
+  if (!why.empty()) {
+    r.summary.raise(Status::Unsupported, why);
+    return rec;
+  }
+  make_output_dir(work_dir);
+  std::string name;
+  for (char c : s.name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  name += fmt::format("_{}x{}x{}", m.nx, m.ny, m.nz);
+  const Grid g = make_grid(s, m);
+  const int n_nodes = static_cast<int>(g.xyz.size());
+  long held = 0;
+  write_text_file((fs::path(work_dir) / (name + ".inp")).string(), brick_input(s, m, g, held));
+  r.summary.unknowns = 3L * n_nodes - held;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  int st = 0;
+  const std::string log =
+      run_command(fmt::format("cd '{}' && OMP_NUM_THREADS=1 '{}' -i '{}' > '{}.log'", work_dir, exe, name, name), st);
+  rec.median_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.summary.total_time_s = rec.median_s;
+  r.summary.timings_s.modes = rec.median_s;  // one ccx run computes the modes only
+  std::ifstream dat(fs::path(work_dir) / (name + ".dat"));
+  if (st != 0 || !dat) {
+    r.summary.raise(Status::NumericalIssue, fmt::format("ccx failed (status {}); see {}/{}.log", st, work_dir, name));
+    return rec;
+  }
+  std::vector<double> omega;
+  std::vector<std::vector<std::array<double, 3>>> shapes;
+  read_dat(dat, n_nodes, omega, shapes);
   if (omega.empty() || shapes.size() != omega.size()) {
     r.summary.raise(Status::NumericalIssue, fmt::format("could not read {} frequencies and shapes from {}.dat", omega.size(), name));
     return rec;
