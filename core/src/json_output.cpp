@@ -21,7 +21,8 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   j["message"] = r.summary.message;
   j["method"] = {{"requested", r.summary.method_requested},
                  {"used", r.summary.method},
-                 {"fallbacks", r.summary.fallbacks}};
+                 {"fallbacks", r.summary.fallbacks},
+                 {"converges_to_scene_theory", r.summary.converges_to_scene_theory}};
   j["unknowns"] = r.summary.unknowns;
   j["threads"] = r.summary.threads;
   j["max_backward_error"] = num(r.summary.max_backward_error);

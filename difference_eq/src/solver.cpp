@@ -127,6 +127,7 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   const double L = beam.L;
   const int held = std::isinf(beam.k0) + std::isinf(beam.r0) + std::isinf(beam.kL) + std::isinf(beam.rL);
   sum.unknowns = 2 * (R + 1) - held;
+  sum.converges_to_scene_theory = s.theory == Theory::EulerBernoulli;
 
   // Loads must sit on nodes.
   std::vector<NodalLoad> loads;

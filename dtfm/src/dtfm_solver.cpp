@@ -87,6 +87,10 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
                "; segment dynamic stiffness, Wittrick-Williams count with Brent polish";
   // Modelling notes (not doubts about the numbers) belong to the method, not the warnings.
   for (const auto& n : model.notes) sum.method += "; " + n;
+  // One prism is the scene's beam theory exactly; finer sections tend to a 3D-like model. Plate
+  // strips tend to the Kirchhoff or Mindlin plate, except with the paper's own layer model.
+  sum.converges_to_scene_theory =
+      scene.is_beam() ? model.ny * model.nz == 1 : mo.layers != LayerModel::Paper;
   sum.set_diagnostic("fields", model.m);
   if (options.mass == MassModel::Lumped)
     sum.warnings.push_back("--mass lumped does not apply: the prisms' mass is distributed (consistent) along x");

@@ -377,6 +377,7 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
   if (!mesh.counts.empty())
     throw InputError("command line", "--mesh", "the exact back-end has no mesh (got '" + mesh.spec() + "')");
   Timer timer;
+  r.summary.converges_to_scene_theory = true;  // it is the scene's theory
   ModeList list;
   if (s.is_beam()) solve_beam(s, list, r, timer);
   else solve_plate(s, o, list, r, timer);

@@ -25,45 +25,61 @@ Scene with_shapes(const Scene& scene, const CompareOptions& opt) {
   return s;
 }
 
+/// The scene with only one quantity requested (no shapes): what that quantity costs alone.
+Scene only(const Scene& scene, Quantity q) {
+  Scene s = scene;
+  s.request.shapes.reset();
+  if (q != Quantity::Frequencies) s.request.modes = 0;
+  if (q != Quantity::Deflections) s.request.probes.clear();
+  if (q != Quantity::Frf) s.request.frf.reset();
+  return s;
+}
+
+bool requested(const Scene& s, Quantity q) {
+  return q == Quantity::Frequencies ? s.request.modes > 0 : q == Quantity::Deflections ? !s.request.probes.empty()
+                                                                                       : s.request.frf.has_value();
+}
+
+/// Whether a result carries the quantity (a back-end may not compute one it was asked for).
+bool produced(const Result& r, Quantity q) {
+  return q == Quantity::Frequencies ? !r.frequencies_rad_s.empty() : q == Quantity::Deflections ? !r.deflections.empty()
+                                                                                                : !r.frf.empty();
+}
+
 RunRecord timed_run(const Solver& s, const Scene& scene, const Discretization& mesh, const CompareOptions& opt) {
   RunRecord rec;
   rec.backend = s.name();
   rec.mesh = mesh;
-  std::vector<double> times;
-  auto once = [&](const Scene& sc) {
-    const auto t0 = clock_type::now();
-    Result r = s.solve(sc, mesh, Options{});
-    times.push_back(std::chrono::duration<double>(clock_type::now() - t0).count());
-    return r;
+  const auto now = [&] {
+    return opt.clock ? opt.clock() : std::chrono::duration<double>(clock_type::now().time_since_epoch()).count();
   };
-  // The warm-up's result is the one kept (with shapes when the scene adds them); the timed
-  // runs solve the scene as given.
-  const Scene shaped = with_shapes(scene, opt);
-  const bool extra = shaped.request.shapes.has_value() != scene.request.shapes.has_value();
-  rec.result = once(shaped);
-  if (!rec.failed() && extra && (opt.quick || times[0] >= 1.0)) {
-    times.clear();
-    once(scene);  // the shapes the warm-up added are not timed
-  }
-  if (!opt.quick && !rec.failed() && times[0] < 1.0) {
-    times.clear();
+  const double start = now();
+  // The untimed warm-up solves the whole scene (with shapes when the comparison adds them); its
+  // result is the one kept.
+  rec.result = s.solve(with_shapes(scene, opt), mesh, Options{});
+  rec.median_s = 0;
+  for (Quantity q : kQuantities) {
+    if (!requested(scene, q) || !produced(rec.result, q)) continue;
+    const Scene alone = only(scene, q);
+    std::vector<double> times;
     double spent = 0;
-    while (static_cast<int>(times.size()) < opt.max_repeats && (times.size() < 3 || spent < opt.min_timing_s)) {
-      once(scene);
+    while (true) {
+      const double t0 = now();
+      s.solve(alone, mesh, Options{});
+      times.push_back(now() - t0);
       spent += times.back();
+      const int n = static_cast<int>(times.size());
+      if (opt.quick || rec.failed() || times.front() >= 1.0 || n >= opt.max_repeats || (n >= 3 && spent >= opt.min_timing_s))
+        break;
     }
+    std::sort(times.begin(), times.end());
+    const double median = times[times.size() / 2];
+    (q == Quantity::Frequencies ? rec.time_s.modes : q == Quantity::Deflections ? rec.time_s.statics : rec.time_s.frf) = median;
+    rec.median_s += median;
+    rec.repeats = std::max(rec.repeats, static_cast<int>(times.size()));
   }
-  std::vector<double> sorted = times;
-  std::sort(sorted.begin(), sorted.end());
-  rec.median_s = sorted[sorted.size() / 2];
-  rec.repeats = static_cast<int>(times.size());
+  rec.spent_s = now() - start;
   return rec;
-}
-
-double mesh_h(const Discretization& d) {
-  double prod = 1;
-  for (int c : d.counts) prod *= c;
-  return d.counts.empty() ? kNaN : std::pow(prod, -1.0 / static_cast<double>(d.counts.size()));
 }
 
 /// A Richardson reference from the finest three successful runs of one back-end.
@@ -97,6 +113,16 @@ std::optional<Reference> richardson_reference(const std::vector<RunRecord>& runs
 }
 
 }  // namespace
+
+std::string to_string(Quantity q) {
+  return q == Quantity::Frequencies ? "frequencies" : q == Quantity::Deflections ? "deflections" : "frf";
+}
+
+double mesh_h(const Discretization& d) {
+  double prod = 1;
+  for (int c : d.counts) prod *= c;
+  return d.counts.empty() ? kNaN : std::pow(prod, -1.0 / static_cast<double>(d.counts.size()));
+}
 
 void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run) {
   const Result& r = run.result;
@@ -164,9 +190,10 @@ void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run) {
   }
 }
 
-double time_to_accuracy(const SceneComparison& c, const std::string& backend, double target) {
+double time_to_accuracy(const SceneComparison& c, const std::string& label, double target, Quantity q) {
   for (const auto& r : c.runs)
-    if (r.backend == backend && !r.failed() && r.max_frequency_error <= target) return r.median_s;
+    if ((r.limit == label || (r.limit.empty() && r.backend == label)) && !r.failed() && r.disc_error(q) <= target)
+      return r.time_s.of(q);
   return kNaN;
 }
 
@@ -174,7 +201,8 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
                                             const CompareOptions& opt) {
   std::vector<SceneComparison> out;
   for (const Scene& scene : scenes) {
-    SceneComparison c{scene, {}, {}, {}};
+    SceneComparison c;
+    c.scene = scene;
     for (const Solver* s : registry.all()) {
       const Capability cap = s->supports(scene);
       if (!cap.any()) {
@@ -184,9 +212,9 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
       }
       std::vector<Discretization> ladder = s->mesh_ladder(scene);
       if (opt.quick && ladder.size() > 3) ladder.resize(3);
-      double spent = 0, last_time = 0, growth = 2.0;
+      double spent = 0, last_time = 0, last_spent = 0, growth = 2.0;
       for (std::size_t k = 0; k < ladder.size(); ++k) {
-        if (k > 0 && spent + last_time * growth > opt.budget_s) {
+        if (k > 0 && spent + last_spent * growth > opt.budget_s) {
           c.notes.push_back(fmt::format("{}: ladder stopped before mesh {} (time budget {:.0f} s per back-end)",
                                         s->name(), ladder[k].spec(), opt.budget_s));
           if (opt.progress)
@@ -196,10 +224,10 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
         }
         if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...", scene.name, s->name(), ladder[k].spec()) << std::flush;
         RunRecord rec = timed_run(*s, scene, ladder[k], opt);
-        const double t = rec.median_s * rec.repeats;
-        spent += t;
+        spent += rec.spent_s;
         if (last_time > 0 && rec.median_s > 0) growth = std::clamp(rec.median_s / last_time, 1.5, 16.0);
         last_time = rec.median_s;
+        last_spent = rec.spent_s;
         if (opt.progress)
           *opt.progress << fmt::format(" {} in {:.3g} s (x{})\n", to_string(rec.result.summary.status), rec.median_s,
                                        rec.repeats);
@@ -261,6 +289,7 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
       }
     }
     for (auto& r : c.runs) measure_errors(scene, c.reference, r);
+    analyse_limits(c);
     out.push_back(std::move(c));
   }
   return out;

@@ -28,10 +28,27 @@ nlohmann::json scene_json(const SceneComparison& c) {
     js["reference"]["uncertainty_rad_s"].push_back(num(c.reference.frequency_uncertainty[i]));
     js["reference"]["families"].push_back(to_string(c.reference.families[i]));
   }
+  js["best_reference"] = c.best_label;
+  js["limits"] = nlohmann::json::array();
+  for (const auto& lim : c.limits)
+    js["limits"].push_back({{"label", lim.label},
+                            {"backend", lim.backend},
+                            {"source", lim.source},
+                            {"observed_order", {num(lim.order[0]), num(lim.order[1]), num(lim.order[2])}},
+                            {"gci", num(lim.gci)},
+                            {"safety_factor", num(lim.safety_factor)},
+                            {"note", lim.convergence_note},
+                            {"model_error", num(lim.model_error)},
+                            {"model_error_uncertainty", num(lim.model_error_uncertainty)}});
   js["runs"] = nlohmann::json::array();
   for (const auto& r : c.runs) {
     auto jr = to_json(c.scene, r.backend, r.mesh, r.result);
     jr["median_s"] = num(r.median_s);
+    jr["time_s"] = {{"modes", num(r.time_s.modes)}, {"statics", num(r.time_s.statics)}, {"frf", num(r.time_s.frf)}};
+    jr["limit"] = r.limit;
+    jr["discretization_error"] = {{"frequencies", num(r.disc_frequency_error)},
+                                  {"deflections", num(r.disc_deflection_error)},
+                                  {"frf_db", num(r.disc_frf_error_db)}};
     jr["repeats"] = r.repeats;
     jr["max_frequency_error"] = num(r.max_frequency_error);
     jr["deflection_error"] = num(r.deflection_error);
@@ -48,15 +65,47 @@ nlohmann::json scene_json(const SceneComparison& c) {
 
 }  // namespace
 
+namespace {
+
+/// A CSV field: quoted (with doubled quotes) when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& v) {
+  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  std::string q = "\"";
+  for (char ch : v) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+
+std::string csv_num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : ""; }
+
+}  // namespace
+
 void write_runs_csv(const std::string& path, const std::vector<SceneComparison>& all) {
-  std::string csv = "scene,backend,mesh,dofs,status,median_s,repeats,max_frequency_error,deflection_error,frf_error_db,reference\n";
-  for (const auto& c : all)
-    for (const auto& r : c.runs) {
-      const auto& s = r.result.summary;
-      csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.scene.name, r.backend, r.mesh.spec(), s.unknowns,
-                         to_string(s.status), r.median_s, r.repeats, r.max_frequency_error, r.deflection_error,
-                         r.frf_error_db, c.reference.source);
+  std::string csv = "scene,backend,method,mesh,dofs,status,quantity,time_s,repeats,error,error_kind,reference,"
+                    "observed_order,gci\n";
+  for (const auto& c : all) {
+    for (const auto& lim : c.limits) {
+      // The finest successful run of the limit carries its GCI.
+      const RunRecord* finest_run = nullptr;
+      for (const auto& r : c.runs)
+        if (r.limit == lim.label && !r.failed()) finest_run = &r;
+      for (const auto& r : c.runs) {
+        if (r.limit != lim.label) continue;
+        const auto& s = r.result.summary;
+        for (Quantity q : kQuantities) {
+          if (!std::isfinite(r.time_s.of(q))) continue;
+          const double gci = q == Quantity::Frequencies && &r == finest_run ? lim.gci : kNaN;
+          csv += fmt::format("{},{},{},{},{},{},{},{},{},{},discretization,{},{},{}\n", csv_field(c.scene.name),
+                             csv_field(r.backend), csv_field(lim.label), csv_field(r.mesh.spec()), s.unknowns,
+                             to_string(s.status), to_string(q), csv_num(r.time_s.of(q)), r.repeats,
+                             csv_num(r.disc_error(q)), csv_field(lim.source), csv_num(lim.order[static_cast<int>(q)]),
+                             csv_num(gci));
+        }
+      }
+      csv += fmt::format("{},{},{},limit,,,frequencies,,,{},model,{},{},{}\n", csv_field(c.scene.name),
+                         csv_field(lim.backend), csv_field(lim.label), csv_num(lim.model_error), csv_field(c.best_label),
+                         csv_num(lim.order[0]), csv_num(lim.model_error_uncertainty));
     }
+  }
   write_text_file(path, csv);
 }
 

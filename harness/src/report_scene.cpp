@@ -21,32 +21,80 @@ void write_notes(Doc& doc, const SceneComparison& c) {
   doc.list(notes);
 }
 
+/// Discretization error of each quantity against that quantity's own time, and the frequency
+/// error against the number of unknowns: one curve per model limit.
 void write_error_charts(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
-  std::vector<Series> vs_time, vs_dofs;
-  for (const auto& b : backends_of(c)) {
-    if (b == c.reference.source) continue;
-    Series st{b, {}}, sd{b, {}};
+  struct Chart {
+    Quantity q;
+    const char* what;
+    const char* time;
+    const char* ylabel;
+  };
+  const Chart charts[] = {
+      {Quantity::Frequencies, "frequencies", "modes", "max relative error, first frequencies"},
+      {Quantity::Deflections, "deflections", "statics", "max relative error at the probes"},
+      {Quantity::Frf, "frf", "FRF", "median |error| [dB]"},
+  };
+  for (const auto& ch : charts) {
+    std::vector<Series> vs_time;
+    for (const auto& lim : c.limits) {
+      Series st{lim.label, {}};
+      for (const auto& r : c.runs)
+        if (r.limit == lim.label && !r.failed() && r.disc_error(ch.q) > 0 && std::isfinite(r.disc_error(ch.q)))
+          st.points.emplace_back(r.time_s.of(ch.q), r.disc_error(ch.q));
+      vs_time.push_back(st);
+    }
+    const std::string name = fmt::format("{}_{}_error_vs_time", sid, ch.what);
+    if (auto svg = plot(ctx, name,
+                        fmt::format("set title 'Discretization error of the {} against their own run time'\n"
+                                    "set xlabel '{} time alone [s]'\nset format x '10^{{%T}}'\nset ylabel '{}'\n"
+                                    "set logscale xy\nset format y '10^{{%T}}'\nset grid\n",
+                                    ch.what, ch.time, ch.ylabel),
+                        vs_time);
+        !svg.empty())
+      doc.figure("plots/" + name + ".svg", svg,
+                 fmt::format("Discretization error of the {} (against each model's own limit) against the median time "
+                             "of the {} alone, model build included: which method buys that accuracy cheapest",
+                             ch.what, ch.time));
+  }
+  std::vector<Series> vs_dofs;
+  for (const auto& lim : c.limits) {
+    Series sd{lim.label, {}};
     for (const auto& r : c.runs)
-      if (r.backend == b && !r.failed() && std::isfinite(r.max_frequency_error) && r.max_frequency_error > 0) {
-        st.points.emplace_back(r.median_s, r.max_frequency_error);
-        if (r.result.summary.unknowns > 0)
-          sd.points.emplace_back(static_cast<double>(r.result.summary.unknowns), r.max_frequency_error);
-      }
-    vs_time.push_back(st);
+      if (r.limit == lim.label && !r.failed() && r.disc_frequency_error > 0 && std::isfinite(r.disc_frequency_error) &&
+          r.result.summary.unknowns > 0)
+        sd.points.emplace_back(static_cast<double>(r.result.summary.unknowns), r.disc_frequency_error);
     vs_dofs.push_back(sd);
   }
-  const std::string ylabel =
-      "set ylabel 'max relative error, first frequencies'\nset logscale xy\nset format y '10^{%T}'\nset grid\n";
-  if (auto svg = plot(ctx, sid + "_error_vs_time",
-                      "set title 'Error against run time'\nset xlabel 'run time [s]'\nset format x '10^{%T}'\n" + ylabel,
-                      vs_time);
-      !svg.empty())
-    doc.figure("plots/" + sid + "_error_vs_time.svg", svg,
-               "Error against run time (median): which method buys accuracy cheapest. Reference: " + c.reference.source);
   if (auto svg = plot(ctx, sid + "_error_vs_dofs",
-                      "set title 'Error against model size'\nset xlabel 'degrees of freedom'\n" + ylabel, vs_dofs);
+                      "set title 'Discretization error against model size'\nset xlabel 'unknowns'\n"
+                      "set ylabel 'max relative error, first frequencies'\nset logscale xy\nset format y '10^{%T}'\nset grid\n",
+                      vs_dofs);
       !svg.empty())
-    doc.figure("plots/" + sid + "_error_vs_dofs.svg", svg, "Error against the number of unknowns");
+    doc.figure("plots/" + sid + "_error_vs_dofs.svg", svg,
+               "Discretization error of the frequencies against the number of unknowns solved");
+}
+
+/// Each model limit: what it is, its observed orders and GCI, and its model error.
+void write_limits_table(Doc& doc, const SceneComparison& c) {
+  std::vector<std::vector<std::string>> rows;
+  auto order = [](double p) { return std::isfinite(p) ? fmt::format("{:.2f}", p) : "—"; };
+  for (const auto& lim : c.limits)
+    rows.push_back({lim.label, lim.source, order(lim.order[0]), order(lim.order[1]), order(lim.order[2]),
+                    std::isfinite(lim.gci) ? fmt::format("{} (Fs {})", err_str(lim.gci),
+                                                         std::isfinite(lim.safety_factor) ? fmt::format("{:g}", lim.safety_factor) : "—")
+                                           : "—",
+                    std::isfinite(lim.model_error)
+                        ? err_str(lim.model_error) + (std::isfinite(lim.model_error_uncertainty)
+                                                          ? " ± " + err_str(lim.model_error_uncertainty)
+                                                          : "")
+                        : "—",
+                    lim.convergence_note});
+  doc.heading(3, "Converged models: observed order, GCI and model error");
+  doc.para("Best reference: " + c.best_label + ". Observed orders per quantity (frequencies: median over the first "
+           "modes); GCI: Roache's grid convergence index of the finest frequency, relative, safety factor Fs = 1.25 when a "
+           "fourth mesh confirms the order, else 3.");
+  doc.table({"method", "converges to", "order (freq.)", "order (defl.)", "order (FRF)", "GCI", "model error", "note"}, rows);
 }
 
 void write_runs_table(Doc& doc, const SceneComparison& c) {
@@ -57,14 +105,19 @@ void write_runs_table(Doc& doc, const SceneComparison& c) {
     if (msg.empty() && !s.warnings.empty()) msg = fmt::format("{} warning(s): {}", s.warnings.size(), s.warnings.front());
     if (r.matched_by_order && !r.paired_by_mac) msg = "modes matched by order (no family labels). " + msg;
     if (r.low_mac_pairs > 0) msg = fmt::format("{} pair(s) with MAC < {}. ", r.low_mac_pairs, kLowMac) + msg;
-    rows.push_back({r.backend, r.mesh.spec(), std::to_string(s.unknowns), to_string(s.status),
-                    fmt::format("{} (x{})", num_str(r.median_s), r.repeats), err_str(r.max_frequency_error),
-                    err_str(r.deflection_error),
-                    std::isfinite(r.frf_error_db) ? fmt::format("{:.2f}", r.frf_error_db) : "—", msg.substr(0, 160)});
+    rows.push_back({r.limit.empty() ? r.backend : r.limit, r.mesh.spec(), std::to_string(s.unknowns), to_string(s.status),
+                    fmt::format("{} / {} / {} (x{})", num_str(r.time_s.modes), num_str(r.time_s.statics),
+                                num_str(r.time_s.frf), r.repeats),
+                    err_str(r.disc_frequency_error), err_str(r.disc_deflection_error),
+                    std::isfinite(r.disc_frf_error_db) ? fmt::format("{:.2g}", r.disc_frf_error_db) : "—",
+                    err_str(r.max_frequency_error), msg.substr(0, 160)});
   }
   doc.heading(3, "Runs");
-  doc.table({"back-end", "mesh", "DOFs", "status", "time [s] (repeats)", "freq. error", "deflection error",
-             "FRF error [dB]", "message"},
+  doc.para("Times: median of each quantity solved alone (modes / statics / FRF). Discretization errors against the "
+           "run's own converged model; the last error column is the difference of the frequencies from the scene's "
+           "reference (" + c.reference.source + "), which adds the model error where the run's model is another.");
+  doc.table({"method", "mesh", "unknowns", "status", "time modes / statics / FRF [s]", "freq. disc. error",
+             "defl. disc. error", "FRF disc. error [dB]", "freq. vs reference", "message"},
             rows);
 }
 
@@ -120,12 +173,17 @@ void write_published_table(Doc& doc, const SceneComparison& c) {
   if (pub.columns.empty()) return;
   std::vector<std::string> head = {"mode"};
   for (const auto& col : pub.columns) head.push_back(col.label);
+  // The finest run of each back-end and at most two coarser rungs (the full ladder is in the CSV).
   std::vector<std::vector<double>> ours;
-  for (const auto& r : c.runs)
-    if (!r.failed() && !r.result.frequencies_rad_s.empty()) {
-      head.push_back(fmt::format("ours: {}", run_label(r)));
-      ours.push_back(published_family(c, r));
+  for (const auto& b : backends_of(c)) {
+    std::vector<const RunRecord*> ok;
+    for (const auto& r : c.runs)
+      if (r.backend == b && !r.failed() && !r.result.frequencies_rad_s.empty()) ok.push_back(&r);
+    for (std::size_t k = ok.size() > 3 ? ok.size() - 3 : 0; k < ok.size(); ++k) {
+      head.push_back(fmt::format("ours: {}", run_label(*ok[k])));
+      ours.push_back(published_family(c, *ok[k]));
     }
+  }
   std::vector<std::vector<std::string>> rows;
   const std::size_t n = pub.columns.front().values.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -229,6 +287,7 @@ void write_scene(Doc& doc, const SceneComparison& c, Context& ctx) {
               sid);
   write_notes(doc, c);
   write_error_charts(doc, c, ctx, sid);
+  write_limits_table(doc, c);
   write_runs_table(doc, c);
   write_frequency_table(doc, c);
   write_published_table(doc, c);

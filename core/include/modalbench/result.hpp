@@ -91,6 +91,12 @@ struct Summary {
   std::string method_requested = "defaults";
   /// What was actually used, in words (discretization, algorithms, checks).
   std::string method;
+  /// Whether this run's model tends, under mesh refinement, to the continuum theory the `exact`
+  /// back-end solves for the scene (scene.theory): then `exact` is its own converged limit and its
+  /// distance to it is discretization error. False where the back-end refines towards another model
+  /// (a multi-prism section tends to 3D elasticity; an Euler-Bernoulli chain on a Timoshenko scene
+  /// to Euler-Bernoulli; a 3D solid to 3D elasticity): its limit is then its own ladder's.
+  bool converges_to_scene_theory = false;
   /// Each fall-back taken: what failed and what was used instead (empty: none).
   std::vector<std::string> fallbacks;
   /// Threads that worked at once (1, or 2 where a check overlaps the main solve).

@@ -1,9 +1,13 @@
 #pragma once
 // The comparison harness: every back-end that supports a scene runs over its ladder of
-// discretizations; each run is timed (median of repeats after a warm-up) and its error is
-// taken per quantity against a reference: the `exact` back-end where the scene has an exact
-// solution, otherwise a Richardson extrapolation of the best-converging back-end, with its
-// stated uncertainty.
+// discretizations; each requested quantity (modes, statics, FRF) is timed on its own (median of
+// repeats after a warm-up). Two errors are kept apart:
+// - discretization error: each run against its own model's converged limit -- the `exact`
+//   back-end where the run's model tends to the scene's theory, otherwise the Richardson limit of
+//   the back-end's own ladder, with its observed order and grid convergence index (GCI);
+// - model error: that converged limit against the best reference of the scene (3D elasticity from
+//   CalculiX bricks extrapolated over their ladder when they ran, else the exact theory).
+// Modes are paired with the scene's reference by MAC on sampled shapes (mode_matching.hpp).
 //
 // Usage:
 //   CompareOptions opt;  opt.budget_s = 20;  opt.progress = &std::cerr;
@@ -41,17 +45,41 @@ struct Reference {
 /// MAC below which a pair of modes is flagged (report and runs table).
 inline constexpr double kLowMac = 0.9;
 
+/// The quantities a scene can ask for, each timed on its own.
+enum class Quantity { Frequencies, Deflections, Frf };
+inline constexpr Quantity kQuantities[] = {Quantity::Frequencies, Quantity::Deflections, Quantity::Frf};
+std::string to_string(Quantity);  ///< frequencies, deflections, frf
+
+/// Median wall time of each requested quantity solved alone (the scene with only that request), s:
+/// model build + modes; build + statics; build + FRF. Set-up shared by two quantities (assembly, a
+/// factorization) is so charged to each quantity that needs it. NaN where not requested.
+struct QuantityTimes {
+  double modes = kNaN, statics = kNaN, frf = kNaN;
+  double of(Quantity q) const { return q == Quantity::Frequencies ? modes : q == Quantity::Deflections ? statics : frf; }
+};
+
 struct RunRecord {
   std::string backend;
   Discretization mesh;
   Result result;
-  double median_s = kNaN;  ///< median wall time of the timed repeats
-  int repeats = 0;
-  // Errors against the scene's reference (NaN where not available).
+  QuantityTimes time_s;    ///< per quantity
+  double median_s = kNaN;  ///< the sum of the quantities' times (shared set-up counted in each)
+  double spent_s = 0;      ///< wall time the harness spent on this rung (warm-up and repeats)
+  int repeats = 0;         ///< timed solves per quantity
+  // Differences from the scene's reference (NaN where not available): model and discretization
+  // error together where the run's model is not the reference's (see the discretization errors below).
   std::vector<double> frequency_errors;  ///< per reference mode (relative)
   double max_frequency_error = kNaN;     ///< over the first min(6, modes) non-rigid reference modes
   double deflection_error = kNaN;        ///< max |w - w_ref| / max |w_ref| over probes
   double frf_error_db = kNaN;            ///< median |20 log10(|H| / |H_ref|)| over common samples
+  /// The ModelLimit (its label) this run converges to, and the run's errors against it.
+  std::string limit;
+  double disc_frequency_error = kNaN;   ///< max relative error over the first min(6, modes) modes
+  double disc_deflection_error = kNaN;  ///< max |w - w_lim| / max |w_lim| over the probes
+  double disc_frf_error_db = kNaN;      ///< median |dB| difference (only against an exact limit)
+  double disc_error(Quantity q) const {
+    return q == Quantity::Frequencies ? disc_frequency_error : q == Quantity::Deflections ? disc_deflection_error : disc_frf_error_db;
+  }
   bool matched_by_order = false;         ///< the run had no family labels: modes paired by order
   bool paired_by_mac = false;            ///< modes paired by MAC on the sampled shapes (else by family order)
   std::vector<int> match;                ///< per reference mode: the run's mode paired with it (-1: none)
@@ -60,11 +88,29 @@ struct RunRecord {
   bool failed() const { return result.summary.status != Status::Success; }
 };
 
+/// What the runs of one back-end converge to, and how far that model is from the best reference.
+struct ModelLimit {
+  std::string label;    ///< the back-end, with "(own model)" / "(<theory>)" when it has runs of both kinds
+  std::string backend;
+  bool scene_theory = false;  ///< the runs tend to the scene's theory: the limit is the exact solution
+  std::string source;         ///< "exact", "richardson(<back-end>, N meshes)", or "none: <why>"
+  Reference values;           ///< the limit (frequency_uncertainty: absolute GCI)
+  double order[3] = {kNaN, kNaN, kNaN};  ///< observed order per Quantity (frequencies: median over modes)
+  double gci = kNaN;            ///< largest relative GCI over the first min(6, modes) frequencies (0: exact)
+  double safety_factor = kNaN;  ///< of the GCI: 1.25 (asymptotic range) or 3
+  std::string convergence_note;
+  double model_error = kNaN;              ///< max over the first min(6, modes) modes: |limit / best - 1|
+  double model_error_uncertainty = kNaN;  ///< relative: the limit's GCI plus the best reference's
+};
+
 struct SceneComparison {
   Scene scene;
-  Reference reference;
+  Reference reference;  ///< the scene's theory (exact), else the best Richardson limit: MAC pairing, tables
   std::vector<RunRecord> runs;  ///< grouped by back-end, each ladder coarse -> fine
   std::vector<std::string> notes;
+  Reference best;              ///< the highest-fidelity reference: 3D (CalculiX, Richardson) or `reference`
+  std::string best_label;      ///< e.g. "3D elasticity: CalculiX C3D20R, Richardson of 4 meshes (GCI 2e-4)"
+  std::vector<ModelLimit> limits;  ///< one per back-end and kind of limit
 };
 
 struct CompareOptions {
@@ -78,6 +124,8 @@ struct CompareOptions {
   bool shapes = true;
   /// Optional extra reference runs (e.g. CalculiX) appended as if they were a back-end.
   std::vector<std::function<std::vector<RunRecord>(const Scene&, std::ostream*)>> extra_references;
+  /// The clock the timings read, seconds (tests inject one; default: std::chrono::steady_clock).
+  std::function<double()> clock;
 };
 
 /// Runs the comparison on every scene. A back-end that throws or fails becomes a run marked
@@ -88,9 +136,18 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
 /// Fills the error fields of `run` against `ref` (exposed for tests).
 void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run);
 
-/// Run time needed by `backend` to reach `max_frequency_error <= target` (first run of its
-/// ladder that does), or NaN if none did.
-double time_to_accuracy(const SceneComparison& c, const std::string& backend, double target);
+/// Time of `q` alone in the first run of the limit `label` (or of the back-end of that name) whose
+/// discretization error of `q` is at most `target`, or NaN if none is.
+double time_to_accuracy(const SceneComparison& c, const std::string& label, double target,
+                        Quantity q = Quantity::Frequencies);
+
+/// The model limits of a comparison's runs, their discretization errors and the model errors
+/// (called by run_comparison; exposed for tests). Fills c.best, c.best_label, c.limits and each
+/// run's `limit` and disc_* errors.
+void analyse_limits(SceneComparison& c);
+
+/// The mesh size of a discretization: (product of its counts)^(-1/dims); NaN without a mesh.
+double mesh_h(const Discretization& d);
 
 /// Built-in scenes: every *.toml in `dir`, sorted by file name.
 std::vector<std::string> scene_files(const std::string& dir);

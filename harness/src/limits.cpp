@@ -1,0 +1,190 @@
+// What each back-end's runs converge to (its model's limit), the runs' discretization errors
+// against it, and each limit's model error against the best reference of the scene.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "modalbench/harness/comparison.hpp"
+
+namespace modalbench {
+
+namespace {
+
+int first_modes(const Scene& s) { return std::min(6, std::max(s.request.modes, 1)); }
+
+double median(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// The finest two runs with a mesh and a finite positive error of `q`: their observed order.
+double order_from_errors(const std::vector<RunRecord*>& runs, Quantity q) {
+  const RunRecord* fine = nullptr;
+  const RunRecord* coarse = nullptr;
+  for (auto it = runs.rbegin(); it != runs.rend(); ++it) {
+    const double e = (*it)->disc_error(q);
+    if ((*it)->mesh.counts.empty() || !(e > 0) || !std::isfinite(e)) continue;
+    if (!fine) fine = *it;
+    else if (!coarse) coarse = *it;
+  }
+  if (!fine || !coarse) return kNaN;
+  return observed_order(mesh_h(coarse->mesh), coarse->disc_error(q), mesh_h(fine->mesh), fine->disc_error(q));
+}
+
+/// The limit of a back-end's own ladder: per mode (paired with the finest run's by family
+/// order) and per probe, the grid convergence of the finest meshes.
+void own_limit(const Scene& scene, const std::vector<RunRecord*>& ok, ModelLimit& lim) {
+  const RunRecord& fine = *ok.back();
+  std::vector<double> h;
+  for (const RunRecord* r : ok) h.push_back(mesh_h(r->mesh));
+  Reference& v = lim.values;
+  v.source = lim.source = fmt::format("richardson({}, {} meshes)", lim.backend, ok.size());
+  v.families = fine.result.mode_families;
+  v.shapes = fine.result.mode_shapes;
+  std::vector<std::vector<int>> match;
+  for (const RunRecord* r : ok) match.push_back(match_modes(v.families, r->result.mode_families));
+  std::vector<double> orders;
+  double worst_gci = 0, factor = 1.25;
+  bool complete = true;
+  int counted = 0;
+  for (std::size_t i = 0; i < v.families.size(); ++i) {
+    const double f_fine = fine.result.frequencies_rad_s[i];
+    if (v.families[i] == ModeFamily::Rigid) {
+      v.frequencies_rad_s.push_back(0.0);
+      v.frequency_uncertainty.push_back(0.0);
+      continue;
+    }
+    std::vector<double> f;
+    for (std::size_t k = 0; k < ok.size(); ++k)
+      if (match[k][i] >= 0) f.push_back(ok[k]->result.frequencies_rad_s[static_cast<std::size_t>(match[k][i])]);
+    const GridConvergence g = f.size() == ok.size() ? grid_convergence(h, f) : GridConvergence{};
+    v.frequencies_rad_s.push_back(g.ok ? g.value : f_fine);
+    v.frequency_uncertainty.push_back(g.ok ? g.gci * std::abs(f_fine) : kNaN);
+    if (counted++ >= first_modes(scene)) continue;
+    orders.push_back(g.order);
+    if (!g.ok) {
+      complete = false;
+      if (lim.convergence_note.empty()) lim.convergence_note = fmt::format("mode {}: {}", i + 1, g.note.empty() ? "not paired on every mesh" : g.note);
+      continue;
+    }
+    if (g.safety_factor > factor || lim.convergence_note.empty()) lim.convergence_note = g.note;
+    factor = std::max(factor, g.safety_factor);
+    worst_gci = std::max(worst_gci, g.gci);
+  }
+  lim.order[0] = median(orders);
+  lim.gci = complete ? worst_gci : kNaN;
+  lim.safety_factor = complete ? factor : kNaN;
+  // Deflections: each probe's w extrapolated the same way; the order of the largest.
+  if (!fine.result.deflections.empty()) {
+    v.deflections = fine.result.deflections;
+    double largest = -1;
+    for (std::size_t p = 0; p < v.deflections.size(); ++p) {
+      std::vector<double> w;
+      for (const RunRecord* r : ok)
+        if (r->result.deflections.size() == v.deflections.size()) w.push_back(r->result.deflections[p].w);
+      if (w.size() != ok.size()) continue;
+      const GridConvergence g = grid_convergence(h, w);
+      if (g.ok) v.deflections[p].w = g.value;
+      if (std::abs(w.back()) > largest) {
+        largest = std::abs(w.back());
+        lim.order[1] = g.order;
+      }
+    }
+  }
+}
+
+/// Max relative difference of the limit from the best reference over its first modes.
+void model_error(const Scene& scene, const Reference& best, double best_gci, ModelLimit& lim) {
+  if (best.frequencies_rad_s.empty() || lim.values.frequencies_rad_s.empty()) return;
+  const auto match = match_modes(best.families, lim.values.families);
+  double worst = 0;
+  int counted = 0;
+  for (std::size_t i = 0; i < best.families.size() && counted < first_modes(scene); ++i) {
+    if (best.families[i] == ModeFamily::Rigid) continue;
+    ++counted;
+    if (match[i] < 0) return;  // a mode the model does not have: no model error
+    worst = std::max(worst, relative_error(lim.values.frequencies_rad_s[static_cast<std::size_t>(match[i])],
+                                           best.frequencies_rad_s[i]));
+  }
+  lim.model_error = worst;
+  lim.model_error_uncertainty = lim.gci + best_gci;
+}
+
+}  // namespace
+
+void analyse_limits(SceneComparison& c) {
+  const Scene& scene = c.scene;
+  // Group the runs by back-end and by whether they tend to the scene's theory.
+  std::map<std::string, int> kinds;  // backend -> bit 1: scene theory, bit 2: own model
+  for (const auto& r : c.runs) kinds[r.backend] |= r.result.summary.converges_to_scene_theory ? 1 : 2;
+  c.limits.clear();
+  std::map<std::string, std::vector<RunRecord*>> members;
+  for (auto& r : c.runs) {
+    const bool theory = r.result.summary.converges_to_scene_theory;
+    std::string label = r.backend;
+    if (kinds[r.backend] == 3) label += theory ? " (" + to_string(scene.theory) + ")" : " (own model)";
+    r.limit = label;
+    if (members.find(label) == members.end()) {
+      ModelLimit lim;
+      lim.label = label;
+      lim.backend = r.backend;
+      lim.scene_theory = theory;
+      c.limits.push_back(lim);
+    }
+    members[label].push_back(&r);
+  }
+  const bool exact = c.reference.source == "exact";
+  for (auto& lim : c.limits) {
+    const auto& runs = members[lim.label];
+    if (lim.scene_theory && exact) {
+      lim.source = "exact";
+      lim.values = c.reference;
+      lim.gci = 0;
+      for (RunRecord* r : runs) {
+        r->disc_frequency_error = r->max_frequency_error;
+        r->disc_deflection_error = r->deflection_error;
+        r->disc_frf_error_db = r->frf_error_db;
+      }
+      for (Quantity q : kQuantities) lim.order[static_cast<int>(q)] = order_from_errors(runs, q);
+      lim.convergence_note = "limit known exactly: errors against the exact solution";
+      continue;
+    }
+    std::vector<RunRecord*> ok;
+    for (RunRecord* r : runs)
+      if (!r->failed() && !r->mesh.counts.empty() && !r->result.frequencies_rad_s.empty()) ok.push_back(r);
+    if (ok.size() < 3) {
+      lim.source = fmt::format("none: {} successful mesh(es), three are needed for a Richardson limit", ok.size());
+      continue;
+    }
+    own_limit(scene, ok, lim);
+    for (RunRecord* r : runs) {
+      RunRecord probe = *r;
+      measure_errors(scene, lim.values, probe);
+      r->disc_frequency_error = probe.max_frequency_error;
+      r->disc_deflection_error = probe.deflection_error;
+    }
+  }
+  // The best reference: 3D bricks extrapolated over their ladder when they converged, else the
+  // scene's reference (the exact theory, or the best Richardson limit).
+  c.best = c.reference;
+  double best_gci = 0;
+  c.best_label = c.reference.source == "exact" ? "exact " + to_string(scene.theory) + " theory" : c.reference.source;
+  for (const auto& lim : c.limits)
+    if (lim.backend == "calculix" && std::isfinite(lim.gci)) {
+      c.best = lim.values;
+      best_gci = lim.gci;
+      c.best_label = fmt::format("3D elasticity: CalculiX C3D20R bricks, {} (GCI {:.1e}, safety factor {})", lim.source,
+                                 lim.gci, lim.safety_factor);
+    }
+  if (c.reference.source != "exact" && c.best_label == c.reference.source)
+    for (std::size_t i = 0; i < c.best.frequencies_rad_s.size() && i < 6; ++i)
+      best_gci = std::max(best_gci, c.best.frequency_uncertainty[i] / std::abs(c.best.frequencies_rad_s[i]));
+  for (auto& lim : c.limits) model_error(scene, c.best, best_gci, lim);
+}
+
+}  // namespace modalbench
