@@ -131,7 +131,13 @@ std::vector<ModeFamily> classify(const Scene& s, const Grid& g, const std::vecto
     for (int q = 0; q < 4; ++q) share[m][q] = tot > 0 ? e[q] / tot : 0.0;
   }
   std::vector<ModeFamily> fam(nm, ModeFamily::Unknown);
+  // ccx prints the rigid-body modes of an unsupported solid as zero or rounding noise.
+  const double top = omega.empty() ? 0.0 : *std::max_element(omega.begin(), omega.end());
   for (std::size_t m = 0; m < nm; ++m) {
+    if (std::abs(omega[m]) <= 1e-5 * top) {
+      fam[m] = ModeFamily::Rigid;
+      continue;
+    }
     if (s.is_plate()) {
       fam[m] = share[m][0] > 0.6 ? ModeFamily::Plate : ModeFamily::Unknown;
       continue;

@@ -19,16 +19,29 @@ using namespace report_detail;
 
 namespace report_detail {
 
+namespace {
+
+/// What a limit is, briefly: "exact solution", "Richardson, 4 meshes", "none (2 meshes)".
+std::string limit_str(const ModelLimit& lim) {
+  if (lim.source == "exact") return "exact solution";
+  if (lim.source.rfind("richardson", 0) == 0) {
+    const auto comma = lim.source.find(", ");
+    return "Richardson, " + lim.source.substr(comma + 2, lim.source.size() - comma - 3);
+  }
+  return "none (" + lim.source.substr(6, lim.source.find(" successful") - 6) + " meshes)";
+}
+
+}  // namespace
+
 void write_summary(Doc& doc, const std::vector<SceneComparison>& all) {
   doc.heading(2, "Summary: how fast each method converges to its own model, and how far that model is from the best reference",
               "summary");
-  doc.para("Time to 1 %, 0.1 % and 0.01 % discretization error on the first 6 frequencies: the time of the modes alone "
-           "(model build + eigen solve) of the cheapest rung of the method's ladder that reaches it, against the "
-           "method's own converged limit (the exact solution where its model tends to the scene's theory, else the "
-           "Richardson limit of its ladder). Model error: that limit against the best reference of the scene, "
-           "± the sum of both GCIs. Cheapest: of the methods whose model error is within the target, the one that reaches "
-           "that discretization error in the least time.");
-  std::vector<std::vector<std::string>> rows;
+  doc.para("Per scene and method: the time to 1 %, 0.1 % and 0.01 % discretization error on the first 6 frequencies "
+           "-- the time of the modes alone (model build + eigen solve) of the cheapest rung of the method's ladder that "
+           "reaches it, against the method's own converged limit (the exact solution where its model tends to the "
+           "scene's theory, else the Richardson limit of its ladder) --, the observed order, and the model error: that "
+           "limit against the best reference of the scene, ± the sum of both GCIs. Cheapest at: of the methods whose "
+           "model error is within the target, the one that reaches that discretization error in the least time.");
   const double targets[3] = {1e-2, 1e-3, 1e-4};
   for (const auto& c : all) {
     double best_t[3] = {kNaN, kNaN, kNaN};
@@ -43,26 +56,25 @@ void write_summary(Doc& doc, const std::vector<SceneComparison>& all) {
           best_m[k] = lim.label;
         }
       }
+    std::vector<std::vector<std::string>> rows;
     for (const auto& lim : c.limits) {
-      std::vector<std::string> row = {c.scene.name, lim.label, lim.source};
+      std::vector<std::string> row = {lim.label, limit_str(lim)};
       std::string cheapest;
       for (int k = 0; k < 3; ++k) {
         row.push_back(time_str(time_to_accuracy(c, lim.label, targets[k])));
         if (best_m[k] == lim.label) cheapest += (cheapest.empty() ? "" : ", ") + fmt::format("{:g} %", targets[k] * 100);
       }
       row.push_back(std::isfinite(lim.order[0]) ? fmt::format("{:.2f}", lim.order[0]) : "—");
-      row.push_back(std::isfinite(lim.model_error)
-                        ? err_str(lim.model_error) +
-                              (std::isfinite(lim.model_error_uncertainty) ? " ± " + err_str(lim.model_error_uncertainty) : "")
-                        : "—");
-      row.push_back(c.best_label);
-      row.push_back(cheapest.empty() ? "" : cheapest);
+      row.push_back(model_error_str(lim));
+      row.push_back(cheapest);
       rows.push_back(row);
     }
+    doc.heading(3, c.scene.name);
+    doc.para("Best reference: " + c.best_label + ".");
+    doc.table({"method", "converges to", "1 % [s]", "0.1 % [s]", "0.01 % [s]", "observed order", "model error",
+               "cheapest at"},
+              rows, 2);
   }
-  doc.table({"scene", "method", "converges to", "1 % [s]", "0.1 % [s]", "0.01 % [s]", "observed order", "model error",
-             "best reference", "cheapest at"},
-            rows);
 }
 
 void write_environment(Doc& doc, const std::vector<std::pair<std::string, std::string>>& env) {
@@ -81,7 +93,7 @@ void open_html(Doc& doc, const std::string& title) {
       fmt::format("<!doctype html><html><head><meta charset=\"utf-8\"><title>{}", esc(title)) +
       "</title><style>body{font-family:Helvetica,Arial,sans-serif;max-width:78em;margin:1em auto;padding:0 1em;color:#222}"
       "table{border-collapse:collapse;margin:0.5em 0 1.2em}td,th{border:1px solid #bbb;padding:2px 8px;text-align:right;"
-      "font-variant-numeric:tabular-nums}th{background:#eee}td.l{text-align:left}figure{margin:0.5em 0}figure img{width:100%;max-width:760px}"
+      "font-variant-numeric:tabular-nums}th{background:#eee}td.l,th.l{text-align:left}figure{margin:0.5em 0}figure img{width:100%;max-width:760px}"
       "figcaption{font-size:90%;color:#555}h2{border-top:2px solid #888;padding-top:0.5em;margin-top:2em}</style>"
       "</head><body>\n";
 }

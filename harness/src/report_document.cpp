@@ -33,6 +33,17 @@ std::string md_cell(const std::string& s) {
 std::string err_str(double e) { return std::isfinite(e) ? fmt::format("{:.2e}", e) : "—"; }
 std::string num_str(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "—"; }
 std::string time_str(double t) { return std::isfinite(t) ? fmt::format("{:.3g}", t) : "not reached"; }
+std::string secs_str(double t) { return std::isfinite(t) ? fmt::format("{:.3g}", t) : "—"; }
+
+std::string model_error_str(const ModelLimit& lim) {
+  if (!std::isfinite(lim.model_error)) return "—";
+  std::string v = lim.model_error == 0 ? "0" : fmt::format("{:.1e}", lim.model_error);
+  if (std::isfinite(lim.model_error_uncertainty) && lim.model_error_uncertainty > 0)
+    v += fmt::format(" ± {:.1e}", lim.model_error_uncertainty);
+  return v;
+}
+
+
 
 std::string command_output(const std::string& cmd) {
   FILE* p = popen((cmd + " 2>&1").c_str(), "r");
@@ -96,16 +107,16 @@ void Doc::list(const std::vector<std::string>& items) {
   html += "</ul>\n";
 }
 
-void Doc::table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows) {
+void Doc::table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, std::size_t left) {
   if (rows.empty()) return;
   md += "|";
   html += "<table><tr>";
-  for (const auto& h : head) {
-    md += fmt::format(" {} |", md_cell(h));
-    html += fmt::format("<th>{}</th>", esc(h));
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    md += fmt::format(" {} |", md_cell(head[i]));
+    html += fmt::format("{}{}</th>", i < left ? "<th class=\"l\">" : "<th>", esc(head[i]));
   }
   md += "\n|";
-  for (std::size_t i = 0; i < head.size(); ++i) md += i == 0 ? "---|" : "---:|";
+  for (std::size_t i = 0; i < head.size(); ++i) md += i < left ? "---|" : "---:|";
   md += "\n";
   html += "</tr>\n";
   for (const auto& r : rows) {
@@ -113,7 +124,7 @@ void Doc::table(const std::vector<std::string>& head, const std::vector<std::vec
     html += "<tr>";
     for (std::size_t i = 0; i < r.size(); ++i) {
       md += fmt::format(" {} |", md_cell(r[i]));
-      html += fmt::format("{}{}</td>", i == 0 ? "<td class=\"l\">" : "<td>", esc(r[i]));
+      html += fmt::format("{}{}</td>", i < left ? "<td class=\"l\">" : "<td>", esc(r[i]));
     }
     md += "\n";
     html += "</tr>\n";

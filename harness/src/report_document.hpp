@@ -15,6 +15,9 @@ std::string md_cell(const std::string& s);  ///< '|' escaped for a Markdown tabl
 std::string err_str(double e);              ///< relative error, or an em dash
 std::string num_str(double v);              ///< 6 significant digits, or an em dash
 std::string time_str(double t);             ///< seconds, or "not reached"
+std::string secs_str(double t);             ///< seconds to 3 digits, or an em dash
+/// A limit's model error with its uncertainty: "4.2e-02 ± 1.9e-03", "0" for an exact zero, "—" unknown.
+std::string model_error_str(const ModelLimit& lim);
 std::string base64(const std::string& in);
 /// Standard output and error of a shell command (trailing newlines removed).
 std::string command_output(const std::string& cmd);
@@ -26,7 +29,8 @@ struct Doc {
   void heading(int level, const std::string& text, const std::string& id = "");
   void para(const std::string& text);
   void list(const std::vector<std::string>& items);
-  void table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows);
+  /// The first `left` columns are text (left-aligned), the others numbers.
+  void table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, std::size_t left = 1);
   void figure(const std::string& svg_file, const std::string& svg, const std::string& caption);
 };
 

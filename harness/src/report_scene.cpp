@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "modalbench/harness/paper_tables.hpp"
 #include "report_document.hpp"
@@ -81,20 +82,15 @@ void write_limits_table(Doc& doc, const SceneComparison& c) {
   auto order = [](double p) { return std::isfinite(p) ? fmt::format("{:.2f}", p) : "—"; };
   for (const auto& lim : c.limits)
     rows.push_back({lim.label, lim.source, order(lim.order[0]), order(lim.order[1]), order(lim.order[2]),
-                    std::isfinite(lim.gci) ? fmt::format("{} (Fs {})", err_str(lim.gci),
-                                                         std::isfinite(lim.safety_factor) ? fmt::format("{:g}", lim.safety_factor) : "—")
-                                           : "—",
-                    std::isfinite(lim.model_error)
-                        ? err_str(lim.model_error) + (std::isfinite(lim.model_error_uncertainty)
-                                                          ? " ± " + err_str(lim.model_error_uncertainty)
-                                                          : "")
-                        : "—",
-                    lim.convergence_note});
+                    lim.source == "exact"  ? "0 (exact)"
+                    : std::isfinite(lim.gci) ? fmt::format("{} (Fs {:g})", err_str(lim.gci), lim.safety_factor)
+                                             : "—",
+                    model_error_str(lim), lim.convergence_note});
   doc.heading(3, "Converged models: observed order, GCI and model error");
   doc.para("Best reference: " + c.best_label + ". Observed orders per quantity (frequencies: median over the first "
            "modes); GCI: Roache's grid convergence index of the finest frequency, relative, safety factor Fs = 1.25 when a "
            "fourth mesh confirms the order, else 3.");
-  doc.table({"method", "converges to", "order (freq.)", "order (defl.)", "order (FRF)", "GCI", "model error", "note"}, rows);
+  doc.table({"method", "converges to", "order (freq.)", "order (defl.)", "order (FRF)", "GCI", "model error", "note"}, rows, 2);
 }
 
 void write_runs_table(Doc& doc, const SceneComparison& c) {
@@ -106,8 +102,7 @@ void write_runs_table(Doc& doc, const SceneComparison& c) {
     if (r.matched_by_order && !r.paired_by_mac) msg = "modes matched by order (no family labels). " + msg;
     if (r.low_mac_pairs > 0) msg = fmt::format("{} pair(s) with MAC < {}. ", r.low_mac_pairs, kLowMac) + msg;
     rows.push_back({r.limit.empty() ? r.backend : r.limit, r.mesh.spec(), std::to_string(s.unknowns), to_string(s.status),
-                    fmt::format("{} / {} / {} (x{})", num_str(r.time_s.modes), num_str(r.time_s.statics),
-                                num_str(r.time_s.frf), r.repeats),
+                    secs_str(r.time_s.modes), secs_str(r.time_s.statics), secs_str(r.time_s.frf), std::to_string(r.repeats),
                     err_str(r.disc_frequency_error), err_str(r.disc_deflection_error),
                     std::isfinite(r.disc_frf_error_db) ? fmt::format("{:.2g}", r.disc_frf_error_db) : "—",
                     err_str(r.max_frequency_error), msg.substr(0, 160)});
@@ -116,7 +111,7 @@ void write_runs_table(Doc& doc, const SceneComparison& c) {
   doc.para("Times: median of each quantity solved alone (modes / statics / FRF). Discretization errors against the "
            "run's own converged model; the last error column is the difference of the frequencies from the scene's "
            "reference (" + c.reference.source + "), which adds the model error where the run's model is another.");
-  doc.table({"method", "mesh", "unknowns", "status", "time modes / statics / FRF [s]", "freq. disc. error",
+  doc.table({"method", "mesh", "unknowns", "status", "modes [s]", "statics [s]", "FRF [s]", "repeats", "freq. disc. error",
              "defl. disc. error", "FRF disc. error [dB]", "freq. vs reference", "message"},
             rows);
 }
@@ -154,18 +149,33 @@ void write_frequency_table(Doc& doc, const SceneComparison& c) {
   doc.table(head, rows);
 }
 
-/// A run's frequencies of the family a published table lists (bending for beams, plate
-/// modes for plates); a run without labels gives its elastic modes in order.
-std::vector<double> published_family(const SceneComparison& c, const RunRecord& r) {
-  const ModeFamily want = c.scene.is_beam() ? ModeFamily::BendingXZ : ModeFamily::Plate;
+/// A run's frequencies beside the rows of a published table: the k-th row of a family beside the
+/// run's k-th mode of that family (rows without families: bending modes of a beam, plate modes of a
+/// plate); a run without labels gives its elastic modes in order. NaN: no such mode.
+std::vector<double> published_family(const SceneComparison& c, const PublishedTable& pub, const RunRecord& r) {
   const auto& fams = r.result.mode_families;
   const bool labelled = std::any_of(fams.begin(), fams.end(), [](ModeFamily f) {
     return f != ModeFamily::Unknown && f != ModeFamily::Rigid;
   });
-  std::vector<double> fam;
-  for (std::size_t k = 0; k < r.result.frequencies_rad_s.size(); ++k)
-    if (labelled ? fams[k] == want : fams[k] != ModeFamily::Rigid) fam.push_back(r.result.frequencies_rad_s[k]);
-  return fam;
+  const std::size_t rows = pub.columns.front().values.size();
+  std::vector<double> out(rows, kNaN);
+  std::map<ModeFamily, std::size_t> seen;
+  std::size_t elastic = 0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    const ModeFamily want = !pub.families.empty() ? pub.families[i]
+                            : c.scene.is_beam()   ? ModeFamily::BendingXZ
+                                                  : ModeFamily::Plate;
+    if (want == ModeFamily::Unknown) continue;
+    std::size_t k = labelled ? seen[want]++ : elastic++, n = 0;
+    for (std::size_t m = 0; m < fams.size(); ++m)
+      if (labelled ? fams[m] == want : fams[m] != ModeFamily::Rigid) {
+        if (n++ == k) {
+          out[i] = r.result.frequencies_rad_s[m];
+          break;
+        }
+      }
+  }
+  return out;
 }
 
 void write_published_table(Doc& doc, const SceneComparison& c) {
@@ -181,15 +191,16 @@ void write_published_table(Doc& doc, const SceneComparison& c) {
       if (r.backend == b && !r.failed() && !r.result.frequencies_rad_s.empty()) ok.push_back(&r);
     for (std::size_t k = ok.size() > 3 ? ok.size() - 3 : 0; k < ok.size(); ++k) {
       head.push_back(fmt::format("ours: {}", run_label(*ok[k])));
-      ours.push_back(published_family(c, *ok[k]));
+      ours.push_back(published_family(c, pub, *ok[k]));
     }
   }
   std::vector<std::vector<std::string>> rows;
   const std::size_t n = pub.columns.front().values.size();
   for (std::size_t i = 0; i < n; ++i) {
-    std::vector<std::string> row = {std::to_string(i + 1)};
+    std::vector<std::string> row = {pub.families.empty() ? std::to_string(i + 1)
+                                                         : fmt::format("{} ({})", i + 1, to_string(pub.families[i]))};
     for (const auto& col : pub.columns) row.push_back(i < col.values.size() ? num_str(col.values[i]) : "—");
-    for (const auto& fam : ours) row.push_back(i < fam.size() ? num_str(fam[i]) : "—");
+    for (const auto& fam : ours) row.push_back(num_str(fam[i]));
     rows.push_back(row);
   }
   doc.heading(3, pub.title + ", side by side with ours");

@@ -200,3 +200,31 @@ BOOST_AUTO_TEST_CASE(discretization_and_model_errors_are_kept_apart) {
     BOOST_TEST(std::isnan(time_to_accuracy(c, m, 1e-3)));
   }
 }
+
+// The NAFEMS FV5 scene encodes its benchmark: simply supported Timoshenko bending (both planes),
+// a fixed-free shaft in torsion and a fixed-free bar -- each against its closed form.
+BOOST_AUTO_TEST_CASE(nafems_fv5_scene_against_closed_forms) {
+  const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/nafems_fv5_deep_beam.toml");
+  const Result r = exact::ExactSolver().solve(s, {}, Options{});
+  BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
+  const auto& m = s.material;
+  const Section sec = s.section();
+  const double L = s.geometry.length, pi = 3.14159265358979323846;
+  // SS Timoshenko, wavenumber k = n pi / L: E I k^4 - w^2 (rho A + rho I k^2 (1 + E / (kappa G)))
+  // + w^4 rho^2 I / (kappa G) = 0, the lower root.
+  auto bending = [&](int n) {
+    const double k = n * pi / L, I = sec.Iy;
+    const double a = m.rho * m.rho * I / (m.kappa * m.G), b = m.rho * sec.A + m.rho * I * k * k * (1 + m.E / (m.kappa * m.G));
+    const double c = m.E * I * k * k * k * k;
+    return std::sqrt((b - std::sqrt(b * b - 4 * a * c)) / (2 * a));
+  };
+  const double torsion = pi / (2 * L) * std::sqrt(m.G * sec.J / (m.rho * sec.Ip));
+  const double axial = pi / (2 * L) * std::sqrt(m.E / m.rho);
+  const std::vector<double> expected = {bending(1), bending(1), torsion, axial, bending(2), bending(2), 3 * torsion,
+                                        bending(3), bending(3)};
+  BOOST_REQUIRE(r.frequencies_rad_s.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    BOOST_TEST(r.frequencies_rad_s[i] == expected[i], tt::tolerance(1e-8));
+  BOOST_TEST(axial / (2 * pi) == 125.0, tt::tolerance(1e-12));  // NAFEMS: 125.00 Hz
+  BOOST_TEST(bending(1) / (2 * pi) == 42.649, tt::tolerance(2e-4));  // NAFEMS: 42.649 Hz
+}

@@ -64,7 +64,10 @@ BOOST_AUTO_TEST_CASE(every_backend_honours_every_field) {
         const auto j = to_json(sc, s->name(), s->default_mesh(sc), r);
         for (const char* key : {"unknowns", "threads", "max_backward_error", "diagnostics", "timing_s"})
           BOOST_TEST(j.contains(key), key);
-        for (const char* key : {"requested", "used", "fallbacks"}) BOOST_TEST(j["method"].contains(key), key);
+        for (const char* key : {"requested", "used", "fallbacks", "converges_to_scene_theory"})
+          BOOST_TEST(j["method"].contains(key), key);
+        // The exact back-end is the scene's theory: its own limit.
+        if (s->name() == "exact") BOOST_TEST(m.converges_to_scene_theory);
         for (const char* key : {"build", "modes", "statics", "frf", "total"}) BOOST_TEST(j["timing_s"].contains(key), key);
       }
     }

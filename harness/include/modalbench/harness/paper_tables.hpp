@@ -1,9 +1,12 @@
 #pragma once
-// Published columns of the prism paper (seeds/hein-…), with ERRATA.md applied, for the
-// side-by-side tables of the report. Keyed by scene name.
+// Published columns for the side-by-side tables of the report, keyed by scene name: the prism
+// paper (seeds/hein-…, with ERRATA.md applied) and the NAFEMS free-vibration benchmarks
+// (NAFEMS R0015: FV5, FV12, FV16, FV52).
 
 #include <string>
 #include <vector>
+
+#include "modalbench/result.hpp"
 
 namespace modalbench {
 
@@ -16,6 +19,10 @@ struct PublishedColumn {
 struct PublishedTable {
   std::string title;
   std::vector<PublishedColumn> columns;
+  /// Per row: the family of the mode it lists (the k-th row of a family is set beside our k-th
+  /// mode of that family; `unknown`: a mode no model of ours has). Empty: bending modes of a beam,
+  /// plate modes of a plate, in order.
+  std::vector<ModeFamily> families = {};
 };
 
 /// The published table for a scene, or an empty table (no columns) if none.
