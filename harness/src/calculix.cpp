@@ -1,6 +1,7 @@
 #include "modalbench/harness/calculix.hpp"
 
 #include "modalbench/harness/files.hpp"
+#include "calculix_detail.hpp"
 
 #include <fmt/format.h>
 
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -17,7 +19,7 @@ namespace modalbench {
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace calculix_detail {
 
 std::string run_command(const std::string& cmd, int& status) {
   FILE* p = popen((cmd + " 2>&1").c_str(), "r");
@@ -32,6 +34,8 @@ std::string run_command(const std::string& cmd, int& status) {
   status = pclose(p);
   return out;
 }
+
+namespace {
 
 /// Fortran prints exponents of three digits without the 'E' ("-4.313991-160"): put it back.
 double fortran_double(std::string t) {
@@ -61,8 +65,117 @@ bool numbers(const std::string& line, std::vector<double>& out) {
   return true;
 }
 
+}  // namespace
+
+/// Reads the eigenvalue table and one displacement block per mode from a ccx .dat file.
+void read_dat(std::istream& dat, int n_nodes, std::vector<double>& omega,
+              std::vector<std::vector<std::array<double, 3>>>& shapes) {
+  std::string line;
+  bool in_table = false;
+  while (std::getline(dat, line)) {
+    if (line.find("E I G E N V A L U E   O U T P U T") != std::string::npos) {
+      in_table = true;
+      continue;
+    }
+    if (line.find("P A R T I C I P A T I O N") != std::string::npos) in_table = false;
+    std::vector<double> v;
+    if (in_table) {
+      if (numbers(line, v) && v.size() == 5) omega.push_back(v[2]);
+      continue;
+    }
+    if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
+      shapes.emplace_back(n_nodes, std::array<double, 3>{0, 0, 0});
+      continue;
+    }
+    if (!shapes.empty() && numbers(line, v) && v.size() == 4) {
+      const int node = static_cast<int>(v[0]);
+      if (node >= 1 && node <= n_nodes) shapes.back()[node - 1] = {v[1], v[2], v[3]};
+    }
+  }
+}
+
+std::vector<ModeFamily> families_from_shares(const Scene& s, const std::vector<std::array<double, 4>>& share,
+                                             const std::vector<double>& omega) {
+  const std::size_t nm = share.size();
+  std::vector<ModeFamily> fam(nm, ModeFamily::Unknown);
+  // ccx prints the rigid-body modes of an unsupported solid as zero or rounding noise (S8R shells:
+  // 2e-5 of the 22nd elastic frequency of the free plate FV12).
+  const double top = omega.empty() ? 0.0 : *std::max_element(omega.begin(), omega.end());
+  for (std::size_t m = 0; m < nm; ++m) {
+    if (std::abs(omega[m]) <= 1e-4 * top) {
+      fam[m] = ModeFamily::Rigid;
+      continue;
+    }
+    if (s.is_plate()) {
+      fam[m] = share[m][0] > 0.6 ? ModeFamily::Plate : ModeFamily::Unknown;
+      continue;
+    }
+    const auto& sh = share[m];
+    if (sh[0] > 0.6) fam[m] = ModeFamily::Axial;
+    else if (sh[1] > 0.6) fam[m] = ModeFamily::BendingXY;
+    else if (sh[2] > 0.6) fam[m] = ModeFamily::BendingXZ;
+    else if (sh[3] > 0.6) fam[m] = ModeFamily::Torsion;
+  }
+  if (s.is_beam())
+    for (std::size_t m = 0; m + 1 < nm; ++m) {
+      if (std::abs(omega[m + 1] / omega[m] - 1) > 1e-5) continue;
+      const double yz = share[m][1] + share[m][2] + share[m + 1][1] + share[m + 1][2];
+      if ((fam[m] == ModeFamily::Unknown || fam[m + 1] == ModeFamily::Unknown) && yz > 1.6) {
+        const bool first_is_z = share[m][2] >= share[m + 1][2];
+        fam[m] = first_is_z ? ModeFamily::BendingXZ : ModeFamily::BendingXY;
+        fam[m + 1] = first_is_z ? ModeFamily::BendingXY : ModeFamily::BendingXZ;
+      }
+    }
+  return fam;
+}
+
+RunRecord run_deck(const Scene& s, RunRecord rec, const std::string& name, const std::string& deck, int n_nodes,
+                   const std::string& exe, const std::string& work_dir, const SharesOf& shares) {
+  rec.repeats = 1;
+  Result& r = rec.result;
+  make_output_dir(work_dir);
+  write_text_file((fs::path(work_dir) / (name + ".inp")).string(), deck);
+  const auto t0 = std::chrono::steady_clock::now();
+  int st = 0;
+  const std::string log =
+      run_command(fmt::format("cd '{}' && OMP_NUM_THREADS=1 '{}' -i '{}' > '{}.log'", work_dir, exe, name, name), st);
+  rec.median_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.summary.total_time_s = rec.median_s;
+  r.summary.timings_s.modes = rec.median_s;  // one ccx run computes the modes only
+  rec.time_s.modes = rec.median_s;
+  rec.spent_s = rec.median_s;
+  std::ifstream dat(fs::path(work_dir) / (name + ".dat"));
+  if (st != 0 || !dat) {
+    r.summary.raise(Status::NumericalIssue, fmt::format("ccx failed (status {}); see {}/{}.log", st, work_dir, name));
+    return rec;
+  }
+  std::vector<double> omega;
+  std::vector<std::vector<std::array<double, 3>>> shapes;
+  read_dat(dat, n_nodes, omega, shapes);
+  if (omega.empty() || shapes.size() != omega.size()) {
+    r.summary.raise(Status::NumericalIssue, fmt::format("could not read {} frequencies and shapes from {}.dat", omega.size(), name));
+    return rec;
+  }
+  r.mode_families = families_from_shares(s, shares(shapes), omega);
+  r.frequencies_rad_s = omega;
+  r.summary.set_diagnostic("ccx_modes_read", static_cast<double>(omega.size()));
+  return rec;
+}
+
+std::string deck_name(const Scene& s, const std::string& suffix) {
+  std::string name;
+  for (char c : s.name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return name + "_" + suffix;
+}
+
 bool is_clamped(const Support& s) { return std::isinf(s.translational) && std::isinf(s.rotational); }
 bool is_simply_supported(const Support& s) { return std::isinf(s.translational) && s.rotational == 0.0; }
+
+}  // namespace calculix_detail
+
+namespace {
+
+using namespace calculix_detail;
 
 /// Structured 20-node brick mesh of a box; node ids on the doubled grid (0 = no node there).
 struct Grid {
@@ -90,14 +203,12 @@ Grid make_grid(const Scene& s, const SolidMesh& m) {
   return g;
 }
 
-/// Families from mode shapes. Beam: per x-slice the section-mean ux, uy, uz and the twist;
-/// the family whose share of the sum of squares exceeds 0.6 names the mode. Nearly
-/// coincident pairs (square sections) share a 2D eigenspace spanned by one bending mode in
-/// each plane: such a pair dominated jointly by uy and uz is labelled xz and xy.
-std::vector<ModeFamily> classify(const Scene& s, const Grid& g, const std::vector<std::vector<std::array<double, 3>>>& shapes,
-                                 const std::vector<double>& omega) {
+/// Per mode the shares of the motion that name its family (bricks): beam [axial, y, z, twist]
+/// from each x-slice's section-mean translations and twist; plate [w, in-plane] on the mid-plane.
+std::vector<std::array<double, 4>> brick_shares(const Scene& s, const Grid& g,
+                                                const std::vector<std::vector<std::array<double, 3>>>& shapes) {
   const std::size_t nm = shapes.size();
-  std::vector<std::array<double, 4>> share(nm, {0, 0, 0, 0});  // axial, y, z, twist (beam); plate: w, in-plane
+  std::vector<std::array<double, 4>> share(nm, {0, 0, 0, 0});
   for (std::size_t m = 0; m < nm; ++m) {
     const auto& u = shapes[m];
     std::array<double, 4> e{0, 0, 0, 0};
@@ -130,35 +241,7 @@ std::vector<ModeFamily> classify(const Scene& s, const Grid& g, const std::vecto
     const double tot = e[0] + e[1] + e[2] + e[3];
     for (int q = 0; q < 4; ++q) share[m][q] = tot > 0 ? e[q] / tot : 0.0;
   }
-  std::vector<ModeFamily> fam(nm, ModeFamily::Unknown);
-  // ccx prints the rigid-body modes of an unsupported solid as zero or rounding noise.
-  const double top = omega.empty() ? 0.0 : *std::max_element(omega.begin(), omega.end());
-  for (std::size_t m = 0; m < nm; ++m) {
-    if (std::abs(omega[m]) <= 1e-5 * top) {
-      fam[m] = ModeFamily::Rigid;
-      continue;
-    }
-    if (s.is_plate()) {
-      fam[m] = share[m][0] > 0.6 ? ModeFamily::Plate : ModeFamily::Unknown;
-      continue;
-    }
-    const auto& sh = share[m];
-    if (sh[0] > 0.6) fam[m] = ModeFamily::Axial;
-    else if (sh[1] > 0.6) fam[m] = ModeFamily::BendingXY;
-    else if (sh[2] > 0.6) fam[m] = ModeFamily::BendingXZ;
-    else if (sh[3] > 0.6) fam[m] = ModeFamily::Torsion;
-  }
-  if (s.is_beam())
-    for (std::size_t m = 0; m + 1 < nm; ++m) {
-      if (std::abs(omega[m + 1] / omega[m] - 1) > 1e-5) continue;
-      const double yz = share[m][1] + share[m][2] + share[m + 1][1] + share[m + 1][2];
-      if ((fam[m] == ModeFamily::Unknown || fam[m + 1] == ModeFamily::Unknown) && yz > 1.6) {
-        const bool first_is_z = share[m][2] >= share[m + 1][2];
-        fam[m] = first_is_z ? ModeFamily::BendingXZ : ModeFamily::BendingXY;
-        fam[m + 1] = first_is_z ? ModeFamily::BendingXY : ModeFamily::BendingXZ;
-      }
-    }
-  return fam;
+  return share;
 }
 
 }  // namespace
@@ -272,104 +355,64 @@ std::string brick_input(const Scene& s, const SolidMesh& m, const Grid& g, long&
   return inp.str();
 }
 
-/// Reads the eigenvalue table and one displacement block per mode from a ccx .dat file.
-void read_dat(std::istream& dat, int n_nodes, std::vector<double>& omega,
-              std::vector<std::vector<std::array<double, 3>>>& shapes) {
-  std::string line;
-  bool in_table = false;
-  while (std::getline(dat, line)) {
-    if (line.find("E I G E N V A L U E   O U T P U T") != std::string::npos) {
-      in_table = true;
-      continue;
-    }
-    if (line.find("P A R T I C I P A T I O N") != std::string::npos) in_table = false;
-    std::vector<double> v;
-    if (in_table) {
-      if (numbers(line, v) && v.size() == 5) omega.push_back(v[2]);
-      continue;
-    }
-    if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
-      shapes.emplace_back(n_nodes, std::array<double, 3>{0, 0, 0});
-      continue;
-    }
-    if (!shapes.empty() && numbers(line, v) && v.size() == 4) {
-      const int node = static_cast<int>(v[0]);
-      if (node >= 1 && node <= n_nodes) shapes.back()[node - 1] = {v[1], v[2], v[3]};
-    }
-  }
-}
-
 }  // namespace
 
 RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& exe, const std::string& work_dir) {
   RunRecord rec;
   rec.backend = "calculix";
   rec.mesh.counts = {m.nx, m.ny, m.nz};
-  rec.repeats = 1;
-  Result& r = rec.result;
-  r.summary.method = fmt::format("CalculiX C3D20R {}x{}x{} (20-node bricks, reduced integration)", m.nx, m.ny, m.nz);
+  rec.result.summary.method = fmt::format("CalculiX C3D20R {}x{}x{} (20-node bricks, reduced integration)", m.nx, m.ny, m.nz);
   const std::string why = calculix_unsupported_reason(s);
   if (!why.empty()) {
-    r.summary.raise(Status::Unsupported, why);
+    rec.result.summary.raise(Status::Unsupported, why);
     return rec;
   }
-  make_output_dir(work_dir);
-  std::string name;
-  for (char c : s.name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  name += fmt::format("_{}x{}x{}", m.nx, m.ny, m.nz);
   const Grid g = make_grid(s, m);
   const int n_nodes = static_cast<int>(g.xyz.size());
   long held = 0;
-  write_text_file((fs::path(work_dir) / (name + ".inp")).string(), brick_input(s, m, g, held));
-  r.summary.unknowns = 3L * n_nodes - held;
-
-  const auto t0 = std::chrono::steady_clock::now();
-  int st = 0;
-  const std::string log =
-      run_command(fmt::format("cd '{}' && OMP_NUM_THREADS=1 '{}' -i '{}' > '{}.log'", work_dir, exe, name, name), st);
-  rec.median_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.summary.total_time_s = rec.median_s;
-  r.summary.timings_s.modes = rec.median_s;  // one ccx run computes the modes only
-  rec.time_s.modes = rec.median_s;
-  rec.spent_s = rec.median_s;
-  std::ifstream dat(fs::path(work_dir) / (name + ".dat"));
-  if (st != 0 || !dat) {
-    r.summary.raise(Status::NumericalIssue, fmt::format("ccx failed (status {}); see {}/{}.log", st, work_dir, name));
-    return rec;
-  }
-  std::vector<double> omega;
-  std::vector<std::vector<std::array<double, 3>>> shapes;
-  read_dat(dat, n_nodes, omega, shapes);
-  if (omega.empty() || shapes.size() != omega.size()) {
-    r.summary.raise(Status::NumericalIssue, fmt::format("could not read {} frequencies and shapes from {}.dat", omega.size(), name));
-    return rec;
-  }
-  const auto fam = classify(s, g, shapes, omega);
-  r.frequencies_rad_s = omega;
-  r.mode_families = fam;
-  r.summary.set_diagnostic("ccx_modes_read", static_cast<double>(omega.size()));
-  return rec;
+  const std::string deck = brick_input(s, m, g, held);
+  rec.result.summary.unknowns = 3L * n_nodes - held;
+  return run_deck(s, std::move(rec), deck_name(s, fmt::format("{}x{}x{}", m.nx, m.ny, m.nz)), deck, n_nodes, exe, work_dir,
+                  [&](const auto& shapes) { return brick_shares(s, g, shapes); });
 }
 
 std::vector<RunRecord> calculix_runs(const Scene& s, const std::string& exe, const std::string& work_dir, double budget_s,
                                      std::ostream* progress) {
   std::vector<RunRecord> runs;
-  if (!calculix_unsupported_reason(s).empty() || s.request.modes <= 0) return runs;
-  double spent = 0, last = 0;
-  for (const auto& m : calculix_ladder(s)) {
-    // Cost grows roughly with DOFs^1.5-2 for the sparse direct solve: guess x8 per rung.
-    if (last > 0 && spent + 8 * last > budget_s) {
-      if (progress) *progress << fmt::format("[{}] calculix: ladder stopped before {}x{}x{} (time budget {:.0f} s)\n", s.name, m.nx, m.ny, m.nz, budget_s);
-      break;
+  if (s.request.modes <= 0) return runs;
+  // One ladder under the budget: cost grows roughly with DOFs^1.5-2 for the sparse direct solve,
+  // so guess x8 per rung.
+  auto ladder = [&](const std::string& label, const std::vector<std::string>& specs,
+                    const std::function<RunRecord(std::size_t)>& run) {
+    double spent = 0, last = 0;
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      if (last > 0 && spent + 8 * last > budget_s) {
+        if (progress)
+          *progress << fmt::format("[{}] {}: ladder stopped before {} (time budget {:.0f} s)\n", s.name, label, specs[k], budget_s);
+        break;
+      }
+      if (progress) *progress << fmt::format("[{}] {} {} ...", s.name, label, specs[k]) << std::flush;
+      RunRecord r = run(k);
+      if (progress) *progress << fmt::format(" {} in {:.3g} s\n", to_string(r.result.summary.status), r.median_s);
+      spent += r.median_s;
+      last = r.median_s;
+      const bool failed = r.failed();
+      runs.push_back(std::move(r));
+      if (failed) break;
     }
-    if (progress) *progress << fmt::format("[{}] calculix {}x{}x{} ...", s.name, m.nx, m.ny, m.nz) << std::flush;
-    RunRecord r = calculix_run(s, m, exe, work_dir);
-    if (progress) *progress << fmt::format(" {} in {:.3g} s\n", to_string(r.result.summary.status), r.median_s);
-    spent += r.median_s;
-    last = r.median_s;
-    const bool failed = r.failed();
-    runs.push_back(std::move(r));
-    if (failed) break;
+  };
+  if (calculix_unsupported_reason(s).empty()) {
+    const auto meshes = calculix_ladder(s);
+    std::vector<std::string> specs;
+    for (const auto& m : meshes) specs.push_back(fmt::format("{}x{}x{}", m.nx, m.ny, m.nz));
+    ladder("calculix", specs, [&](std::size_t k) { return calculix_run(s, meshes[k], exe, work_dir); });
+  }
+  if (calculix_peer_unsupported_reason(s).empty()) {
+    const auto meshes = calculix_peer_ladder(s);
+    std::vector<std::string> specs;
+    for (const auto& m : meshes) specs.push_back(m.spec());
+    ladder("calculix-" + calculix_peer_element(s), specs,
+           [&](std::size_t k) { return calculix_peer_run(s, meshes[k], exe, work_dir); });
   }
   return runs;
 }

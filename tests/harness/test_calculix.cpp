@@ -50,3 +50,49 @@ BOOST_AUTO_TEST_CASE(unsupported_supports_are_refused) {
   const RunRecord r = calculix_run(s, {4, 2, 2}, "ccx", dir.str());
   BOOST_TEST((r.result.summary.status == Status::Unsupported));
 }
+
+// The practitioner's peers. B32R beams on the paper's beam: modes labelled by family, the x-z
+// bending ones within 1 % of the Timoshenko beam (ccx uses its own shear treatment, not the
+// scene's kappa = 1: a sanity bound, not a convergence check), each with its x-y twin.
+BOOST_AUTO_TEST_CASE(b32r_beams_label_their_modes, *boost::unit_test::precondition(ccx_installed)) {
+  const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
+  BOOST_TEST(calculix_peer_element(s) == "B32R");
+  const modalbench_test::TempDir dir("modalbench_test_ccx_b32r");
+  const RunRecord r = calculix_peer_run(s, Discretization::parse("64"), "ccx", dir.str());
+  BOOST_TEST_REQUIRE(!r.failed(), r.result.summary.message);
+  BOOST_TEST(r.backend == "calculix-B32R");
+  const double timoshenko[] = {6211.15, 13848.36, 22763.93, 32186.47};  // ERRATA 1
+  std::vector<double> xz, xy;
+  int torsion = 0, axial = 0;
+  for (std::size_t i = 0; i < r.result.frequencies_rad_s.size(); ++i) {
+    const auto f = r.result.mode_families[i];
+    if (f == ModeFamily::BendingXZ) xz.push_back(r.result.frequencies_rad_s[i]);
+    if (f == ModeFamily::BendingXY) xy.push_back(r.result.frequencies_rad_s[i]);
+    torsion += f == ModeFamily::Torsion;
+    axial += f == ModeFamily::Axial;
+  }
+  BOOST_REQUIRE(xz.size() >= 4u);
+  BOOST_REQUIRE(xy.size() >= 4u);
+  for (int i = 0; i < 4; ++i) {
+    BOOST_TEST(std::abs(xz[i] / timoshenko[i] - 1) < 0.01, "mode " << i + 1 << ": " << xz[i]);
+    BOOST_TEST(std::abs(xy[i] / xz[i] - 1) < 1e-6, "pair " << i + 1);
+  }
+  BOOST_TEST(torsion >= 1);
+  BOOST_TEST(axial >= 1);
+}
+
+// S8R shells on the paper's plate: no membrane mode among the bending ones (the in-plane
+// translations are held), every one labelled plate, within 2 % of the exact Mindlin plate
+// (kappa = 5/6: 1682.09, 3003.40, 5178.09, 5321.88 rad/s, exact back-end) -- a sanity bound.
+BOOST_AUTO_TEST_CASE(s8r_shells_have_no_spurious_membrane_modes, *boost::unit_test::precondition(ccx_installed)) {
+  const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
+  BOOST_TEST(calculix_peer_element(s) == "S8R");
+  const modalbench_test::TempDir dir("modalbench_test_ccx_s8r");
+  const RunRecord r = calculix_peer_run(s, Discretization::parse("13x8"), "ccx", dir.str());
+  BOOST_TEST_REQUIRE(!r.failed(), r.result.summary.message);
+  const double mindlin[] = {1682.09, 3003.40, 5178.09, 5321.88};
+  BOOST_REQUIRE(r.result.frequencies_rad_s.size() >= 8u);
+  for (std::size_t i = 0; i < 8; ++i) BOOST_TEST((r.result.mode_families[i] == ModeFamily::Plate), "mode " << i + 1);
+  for (std::size_t i = 0; i < 4; ++i)
+    BOOST_TEST(std::abs(r.result.frequencies_rad_s[i] / mindlin[i] - 1) < 0.02, "mode " << i + 1 << ": " << r.result.frequencies_rad_s[i]);
+}
