@@ -136,8 +136,8 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
 /// Fills the error fields of `run` against `ref` (exposed for tests).
 void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run);
 
-/// Time of `q` alone in the first run of the limit `label` (or of the back-end of that name) whose
-/// discretization error of `q` is at most `target`, or NaN if none is.
+/// Time of `q` alone in the cheapest run of the limit `label` (or of the back-end of that name)
+/// whose discretization error of `q` is at most `target`, or NaN if none is.
 double time_to_accuracy(const SceneComparison& c, const std::string& label, double target,
                         Quantity q = Quantity::Frequencies);
 
