@@ -22,13 +22,15 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-/// The finest two runs with a mesh and a finite positive error of `q`: their observed order.
+/// The finest two runs with a mesh and an error of `q` above the rounding level: their observed
+/// order (errors at rounding, e.g. the exact nodal statics of difference_eq, have none).
 double order_from_errors(const std::vector<RunRecord*>& runs, Quantity q) {
+  const double rounding = q == Quantity::Frf ? 1e-9 : 1e-11;  // dB for the FRF, relative otherwise
   const RunRecord* fine = nullptr;
   const RunRecord* coarse = nullptr;
   for (auto it = runs.rbegin(); it != runs.rend(); ++it) {
     const double e = (*it)->disc_error(q);
-    if ((*it)->mesh.counts.empty() || !(e > 0) || !std::isfinite(e)) continue;
+    if ((*it)->mesh.counts.empty() || !(e > rounding) || !std::isfinite(e)) continue;
     if (!fine) fine = *it;
     else if (!coarse) coarse = *it;
   }
