@@ -22,7 +22,9 @@ const int kLadder[] = {8, 16, 32, 64};
 /// Errors per mesh of the flexible modes; asserts monotone convergence (|error| shrinks on every
 /// refinement), a fixed sign from n = 16 on (n = 8 leaves 1.3 segments per half wave of mode 6:
 /// not yet asymptotic) and an observed order (32 -> 64) within [lo, hi]. Rigid modes must come
-/// out as exact zeros. Every mode's componentwise backward error is at rounding level.
+/// out as exact zeros. Every mode's backward error is within the eigensolver's tolerance (the
+/// auto path is Lanczos from 40 coordinates up; the dense path's rounding level is checked by
+/// its own test).
 void check_convergence(const Scene& s, const std::vector<double>& exact_w, int rigid, double lo = 1.8,
                        double hi = 2.2) {
   const int k = static_cast<int>(exact_w.size());
@@ -31,7 +33,7 @@ void check_convergence(const Scene& s, const std::vector<double>& exact_w, int r
     Modes md;
     const auto w = frequencies(build_beam(s, kLadder[l]), k, EigenMethod::Auto, &md);
     BOOST_REQUIRE(static_cast<int>(w.size()) == k);
-    BOOST_TEST(md.max_backward_error < 1e-12);
+    BOOST_TEST(md.max_backward_error < ModeOptions{}.tolerance);
     for (int i = 0; i < k; ++i) {
       if (i < rigid) {
         BOOST_TEST(w[static_cast<std::size_t>(i)] == 0.0);

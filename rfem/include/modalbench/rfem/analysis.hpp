@@ -36,7 +36,7 @@ enum class EigenMethod { Auto, Dense, ShiftInvert };
 struct ModeOptions {
   int modes = 0;                 ///< lowest modes wanted, rigid ones included
   EigenMethod method = EigenMethod::Auto;
-  long dense_limit = 600;        ///< Auto: dense up to this many coordinates (see solve_modes)
+  long dense_limit = 40;         ///< Auto: dense up to this many coordinates (see solve_modes)
   double tolerance = 1e-10;      ///< Lanczos relative tolerance
   bool sturm_check = true;       ///< count the eigenvalues below the last mode (sparse path)
   double backward_error_warning = 1e-10;  ///< warn (and the solver flags) above this
