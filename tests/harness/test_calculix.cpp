@@ -17,6 +17,23 @@ boost::test_tools::assertion_result ccx_installed(boost::unit_test::test_unit_id
   r.message() << "skipped: ccx not installed (Debian: calculix-ccx)";
   return r;
 }
+
+/// A beam run's bending frequencies per plane and its counts of torsion and axial modes.
+struct Families {
+  std::vector<double> xz, xy;
+  int torsion = 0, axial = 0;
+};
+Families families(const RunRecord& r) {
+  Families out;
+  for (std::size_t i = 0; i < r.result.frequencies_rad_s.size(); ++i) {
+    const auto f = r.result.mode_families[i];
+    if (f == ModeFamily::BendingXZ) out.xz.push_back(r.result.frequencies_rad_s[i]);
+    if (f == ModeFamily::BendingXY) out.xy.push_back(r.result.frequencies_rad_s[i]);
+    out.torsion += f == ModeFamily::Torsion;
+    out.axial += f == ModeFamily::Axial;
+  }
+  return out;
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(paper_beam_3d, *boost::unit_test::precondition(ccx_installed)) {
@@ -25,15 +42,7 @@ BOOST_AUTO_TEST_CASE(paper_beam_3d, *boost::unit_test::precondition(ccx_installe
   const RunRecord r = calculix_run(s, {20, 4, 4}, "ccx", dir.str());
   BOOST_TEST_REQUIRE(!r.failed(), r.result.summary.message);
   const double converged[] = {6079.75, 13380.23, 21900.37, 30888.10};  // ERRATA 8
-  std::vector<double> xz, xy;
-  int torsion = 0, axial = 0;
-  for (std::size_t i = 0; i < r.result.frequencies_rad_s.size(); ++i) {
-    const auto f = r.result.mode_families[i];
-    if (f == ModeFamily::BendingXZ) xz.push_back(r.result.frequencies_rad_s[i]);
-    if (f == ModeFamily::BendingXY) xy.push_back(r.result.frequencies_rad_s[i]);
-    torsion += f == ModeFamily::Torsion;
-    axial += f == ModeFamily::Axial;
-  }
+  const auto [xz, xy, torsion, axial] = families(r);
   BOOST_REQUIRE(xz.size() >= 4u);
   for (int i = 0; i < 4; ++i) BOOST_TEST(std::abs(xz[i] / converged[i] - 1) < 0.005, "mode " << i + 1 << ": " << xz[i]);
   BOOST_TEST(torsion >= 1);
@@ -62,15 +71,7 @@ BOOST_AUTO_TEST_CASE(b32r_beams_label_their_modes, *boost::unit_test::preconditi
   BOOST_TEST_REQUIRE(!r.failed(), r.result.summary.message);
   BOOST_TEST(r.backend == "calculix-B32R");
   const double timoshenko[] = {6211.15, 13848.36, 22763.93, 32186.47};  // ERRATA 1
-  std::vector<double> xz, xy;
-  int torsion = 0, axial = 0;
-  for (std::size_t i = 0; i < r.result.frequencies_rad_s.size(); ++i) {
-    const auto f = r.result.mode_families[i];
-    if (f == ModeFamily::BendingXZ) xz.push_back(r.result.frequencies_rad_s[i]);
-    if (f == ModeFamily::BendingXY) xy.push_back(r.result.frequencies_rad_s[i]);
-    torsion += f == ModeFamily::Torsion;
-    axial += f == ModeFamily::Axial;
-  }
+  const auto [xz, xy, torsion, axial] = families(r);
   BOOST_REQUIRE(xz.size() >= 4u);
   BOOST_REQUIRE(xy.size() >= 4u);
   for (int i = 0; i < 4; ++i) {
