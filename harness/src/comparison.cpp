@@ -25,10 +25,11 @@ Scene with_shapes(const Scene& scene, const CompareOptions& opt) {
   return s;
 }
 
-/// The scene with only one quantity requested (no shapes): what that quantity costs alone.
+/// The scene with only one quantity requested: what that quantity costs alone (shapes the scene
+/// asks for belong to its modes; those the comparison adds for MAC pairing are not timed).
 Scene only(const Scene& scene, Quantity q) {
   Scene s = scene;
-  s.request.shapes.reset();
+  if (q != Quantity::Frequencies) s.request.shapes.reset();
   if (q != Quantity::Frequencies) s.request.modes = 0;
   if (q != Quantity::Deflections) s.request.probes.clear();
   if (q != Quantity::Frf) s.request.frf.reset();
