@@ -8,7 +8,8 @@ REPORT_DIR ?= report
 BUDGET ?= 20
 PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev \
             libspectra-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
-            libsuitesparse-dev libopenblas0-serial gnuplot-nox calculix-ccx
+            libsuitesparse-dev libopenblas0-serial gnuplot-nox calculix-ccx \
+            pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed
 
 .PHONY: all deps configure build report test bench sanitize clean
 
@@ -32,7 +33,7 @@ deps:
 	fi
 
 configure: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMODALBENCH_PYTHON=ON
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)

@@ -4,15 +4,19 @@
 //   modalbench list
 //   modalbench solve scenes/paper_fixed_beam.toml --backend exact --json
 //   modalbench compare --out report
+//   modalbench study spec.toml --out study   (the Python study driver of this build)
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "modalbench/harness/calculix.hpp"
 #include "modalbench/harness/comparison.hpp"
@@ -97,6 +101,28 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   std::cout << fmt::format("  time {:.4g} s\n", r.summary.total_time_s);
 }
 
+/// Replaces this process by the Python study driver (python3 -m modalbench study ...).
+int run_study(const std::string& spec, const std::string& out, const std::string& scheduler, int workers) {
+#ifdef MODALBENCH_PYTHON_EXECUTABLE
+  std::string path = MODALBENCH_PYTHON_DIR;
+  if (const char* old = std::getenv("PYTHONPATH"); old && *old) path += std::string(":") + old;
+  setenv("PYTHONPATH", path.c_str(), 1);
+  std::vector<std::string> args = {MODALBENCH_PYTHON_EXECUTABLE, "-m", "modalbench", "study", spec, "--out", out};
+  if (!scheduler.empty()) args.insert(args.end(), {"--scheduler", scheduler});
+  if (workers > 0) args.insert(args.end(), {"--workers", std::to_string(workers)});
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv(argv[0], argv.data());
+  std::cerr << "modalbench: study: cannot run " << MODALBENCH_PYTHON_EXECUTABLE << ": " << std::strerror(errno) << "\n";
+  return 1;
+#else
+  (void)spec, (void)out, (void)scheduler, (void)workers;
+  std::cerr << "modalbench: study: this modalbench was built without its Python module (pybind11-dev, python3-dev)\n";
+  return 2;
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -150,6 +176,14 @@ int main(int argc, char** argv) {
   stab->add_option("--out,-o", stab_dir, "output directory");
   stab->add_flag("--quick", stab_quick, "a few cases per group");
 
+  auto* study = app.add_subcommand("study", "run a parameter study (Python driver; see README.md)");
+  std::string study_spec, study_out, study_scheduler;
+  int study_workers = 0;
+  study->add_option("spec", study_spec, "study spec (TOML)")->required();
+  study->add_option("--out,-o", study_out, "output folder")->required();
+  study->add_option("--scheduler", study_scheduler, "Dask scheduler address (tcp://HOST:PORT); default: local processes");
+  study->add_option("--workers", study_workers, "local processes (default: one per core)")->check(CLI::Range(1, 1024));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -160,6 +194,7 @@ int main(int argc, char** argv) {
   try {
     const mb::Registry reg = mb::make_default_registry();
     if (*list) return run_list(reg);
+    if (*study) return run_study(study_spec, study_out, study_scheduler, study_workers);
     if (*opts) return run_options(reg, opts_backend);
     if (*solve) {
       const mb::Scene scene = mb::load_scene(scene_path);

@@ -1,0 +1,146 @@
+"""modalbench from Python: load or build a scene, solve it with any back-end, run studies.
+
+    import modalbench as mb
+    scene = mb.load_scene("scenes/paper_fixed_beam.toml")
+    r = mb.solve(scene, "rfem", mesh="64")
+    print(r.status, r.frequencies_rad_s[:3])
+
+Scenes built from dicts follow the TOML schema (README.md, "Scene format") and are validated by
+the same code, with the same messages, as scene files. Errors in the user's input raise
+InputError(source, key, reason); a solve that fails its own checks returns a Result whose
+`status` says so (the numbers are still there).
+"""
+
+import json
+import math
+
+import numpy as np
+
+from . import _modalbench
+from ._toml import to_toml
+
+__all__ = ["InputError", "Scene", "Result", "load_scene", "backends", "solve", "study"]
+
+
+class InputError(ValueError):
+    """Invalid input: the message names the source (file or dict), the key and the reason."""
+
+    def __init__(self, message, source="", key="", reason=""):
+        super().__init__(message)
+        self.source = source
+        self.key = key
+        self.reason = reason
+
+
+_modalbench._set_input_error(InputError)
+
+
+class Scene:
+    """A validated scene. `toml` is its text (what a study sends to other processes)."""
+
+    def __init__(self, native, toml_text):
+        self._native = native
+        self.toml = toml_text
+
+    @classmethod
+    def from_dict(cls, d, source="<dict>"):
+        """A scene from the TOML schema as nested dicts; `source` names it in messages."""
+        if not isinstance(d, dict):
+            raise InputError(f"{source}: a scene is a dict of tables, not {type(d).__name__}", source, "", "not a dict")
+        text = to_toml(d)
+        return cls(_modalbench._parse_scene(text, source), text)
+
+    @classmethod
+    def from_toml(cls, text, source="<toml>"):
+        return cls(_modalbench._parse_scene(text, source), text)
+
+    def __reduce__(self):
+        return (Scene.from_toml, (self.toml, self.source))
+
+    name = property(lambda self: self._native.name)
+    source = property(lambda self: self._native.source)
+    kind = property(lambda self: self._native.kind)
+    physics = property(lambda self: self._native.physics)
+    theory = property(lambda self: self._native.theory)
+    notes = property(lambda self: list(self._native.notes))
+
+    def __repr__(self):
+        return f"Scene({self.name!r}, {self.kind} {self.physics}, {self.theory}, from {self.source!r})"
+
+
+def load_scene(path):
+    """Reads and validates a scene file (the checks and messages of the command line)."""
+    native = _modalbench._load_scene(str(path))
+    with open(path, encoding="utf-8") as f:
+        return Scene(native, f.read())
+
+
+def backends():
+    """The back-ends built into this modalbench."""
+    return list(_modalbench._backends())
+
+
+def _num(v):
+    return math.nan if v is None else float(v)
+
+
+class Result:
+    """One solve: the command line's JSON document (`as_dict`), with the numbers as NumPy arrays."""
+
+    def __init__(self, doc):
+        self.as_dict = doc
+        self.status = doc["status"]
+        self.message = doc["message"]
+        self.backend = doc["backend"]
+        self.mesh = doc["mesh"]
+        self.method = doc["method"]
+        self.unknowns = doc["unknowns"]
+        self.threads = doc["threads"]
+        self.max_backward_error = _num(doc["max_backward_error"])
+        self.frequencies_rad_s = np.array([_num(f) for f in doc["frequencies_rad_s"]], dtype=float)
+        self.families = list(doc["mode_families"])
+        self.deflections = doc["deflections"]
+        self.w = np.array([_num(d["w"]) for d in doc["deflections"]], dtype=float)
+        frf = doc.get("frf", [])
+        self.frf_omega_rad_s = np.array([s["omega_rad_s"] for s in frf], dtype=float)
+        self.frf_receptance = np.array([complex(s["re"], s["im"]) for s in frf], dtype=complex)
+        self.mode_shapes = doc.get("mode_shapes")
+        self.timing_s = doc["timing_s"]
+        self.diagnostics = doc["diagnostics"]
+        self.warnings = doc["warnings"]
+
+    @property
+    def ok(self):
+        return self.status == "success"
+
+    def shape(self, component="w"):
+        """Mode shapes of one component as an array [mode, point] (None without shapes)."""
+        if not self.mode_shapes:
+            return None
+        return np.array(self.mode_shapes[component], dtype=float)
+
+    def __repr__(self):
+        return f"Result({self.backend} {self.mesh}: {self.status}, {len(self.frequencies_rad_s)} frequencies)"
+
+
+def solve(scene, backend, mesh=None, mass="consistent", options=None):
+    """Solves `scene` with `backend` (mesh spec such as "64" or "100x60"; None: the back-end's
+    default). `options`: the back-end's options as a dict (see `modalbench options NAME`).
+    Invalid input raises InputError; every other outcome is a Result with its status."""
+    if not isinstance(scene, Scene):
+        raise TypeError("solve() takes a modalbench.Scene (load_scene or Scene.from_dict)")
+    opts = [(str(k), _option_text(v)) for k, v in (options or {}).items()]
+    text = _modalbench._solve(scene._native, str(backend), "" if mesh is None else str(mesh), str(mass), opts)
+    doc = json.loads(text)
+    if doc["status"] == "invalid-input":
+        raise InputError(doc["message"], scene.source, "", doc["message"])
+    return Result(doc)
+
+
+def _option_text(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return str(v)
+
+
+from .study import study  # noqa: E402  (needs the names above)

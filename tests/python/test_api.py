@@ -1,0 +1,145 @@
+"""The Python API against the command line and the scene schema."""
+
+import json
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import modalbench as mb
+from conftest import EXE, SCENES
+
+# Numbers that depend on the clock, not on the model.
+TIMING_KEYS = {"timing_s"}
+
+
+def _strip(doc):
+    doc = {k: v for k, v in doc.items() if k not in TIMING_KEYS and k != "scene_file"}
+    return doc
+
+
+@pytest.mark.parametrize("path", sorted(SCENES.glob("*.toml")), ids=lambda p: p.stem)
+def test_python_equals_the_command_line_json(path):
+    scene = mb.load_scene(path)
+    for backend in mb.backends():
+        cli = subprocess.run([EXE, "solve", str(path), "--backend", backend, "--json"], capture_output=True, text=True)
+        assert cli.returncode in (0, 2, 3), cli.stderr
+        doc = json.loads(cli.stdout)
+        if doc["status"] == "invalid-input":  # raised in Python, with the same message
+            with pytest.raises(mb.InputError) as e:
+                mb.solve(scene, backend)
+            assert str(e.value) == doc["message"]
+            continue
+        r = mb.solve(scene, backend)
+        # Every number bitwise (JSON round-trips doubles exactly), every string and status equal.
+        assert _strip(r.as_dict) == _strip(doc), (path.name, backend)
+        freqs = [f if f is not None else np.nan for f in doc["frequencies_rad_s"]]
+        assert np.array_equal(r.frequencies_rad_s, np.array(freqs, dtype=float), equal_nan=True)
+
+
+def test_a_scene_from_a_dict_is_the_scene_from_its_file():
+    d = {
+        "scene": {"name": "dict-beam", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
+        "geometry": {"length": 2.0, "width": 0.05, "height": 0.1},
+        "material": {"E": 2.0e11, "nu": 0.3, "rho": 7850.0},
+        "supports": {"x0": "clamped", "xL": {"translational": float("inf"), "rotational": 0.0}},
+        "loads": [{"x": 1.0, "Fz": -1000.0}],
+        "request": {"modes": 4, "probes": [1.0, 2.0]},
+    }
+    s = mb.Scene.from_dict(d)
+    r = mb.solve(s, "exact")
+    assert r.ok, r.message
+    # Clamped-pinned Euler-Bernoulli beam: beta L = 3.9266, 7.0686, 10.2102, 13.3518 (Blevins).
+    EI, rhoA, L = 2.0e11 * 0.05 * 0.1**3 / 12, 7850.0 * 0.05 * 0.1, 2.0
+    beta_l = np.array([3.92660231, 7.06858275, 10.21017612, 13.35176878])
+    assert np.allclose(r.frequencies_rad_s, beta_l**2 * np.sqrt(EI / rhoA) / L**2, rtol=1e-8)
+
+
+def _bad_pair(tmp_path, mutate):
+    base = {
+        "scene": {"name": "bad", "kind": "beam", "physics": "bending", "theory": "timoshenko"},
+        "geometry": {"length": 1.0, "width": 0.1, "height": 0.1},
+        "material": {"E": 2.0e11, "nu": 0.3, "rho": 7850.0},
+        "supports": {"x0": "clamped", "xL": "free"},
+        "request": {"modes": 3},
+    }
+    mutate(base)
+    path = tmp_path / "bad.toml"
+    path.write_text(mb._toml.to_toml(base))
+    with pytest.raises(mb.InputError) as from_file:
+        mb.load_scene(path)
+    with pytest.raises(mb.InputError) as from_dict:
+        mb.Scene.from_dict(base, source=str(path))
+    return from_file.value, from_dict.value
+
+
+@pytest.mark.parametrize(
+    "mutate, key",
+    [
+        (lambda d: d["geometry"].update(length=-1.0), "geometry.length"),
+        (lambda d: d["material"].update(nu=0.7), "material.nu"),
+        (lambda d: d["supports"].update(x0="glued"), "supports.x0"),
+        (lambda d: d["request"].update(modes="six"), "request.modes"),
+        (lambda d: d["geometry"].update(depth=1.0), "geometry.depth"),
+    ],
+)
+def test_a_bad_dict_gets_the_message_of_the_same_bad_toml(tmp_path, mutate, key):
+    f, d = _bad_pair(tmp_path, mutate)
+    assert str(f) == str(d)
+    assert (f.source, f.key, f.reason) == (d.source, d.key, d.reason)
+    assert f.key == key, str(f)
+    # And the command line says the same.
+    cli = subprocess.run([EXE, "solve", str(tmp_path / "bad.toml")], capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert str(f) in cli.stderr
+
+
+def test_invalid_mesh_and_backend_raise_input_error():
+    s = mb.load_scene(SCENES / "paper_fixed_beam.toml")
+    with pytest.raises(mb.InputError, match="--mesh"):
+        mb.solve(s, "rfem", mesh="ten")
+    with pytest.raises(mb.InputError, match="backend"):
+        mb.solve(s, "no-such-backend")
+    with pytest.raises(mb.InputError, match="mass"):
+        mb.solve(s, "rfem", mass="heavy")
+
+
+def test_shapes_and_frf_come_as_arrays():
+    d = {
+        "scene": {"name": "shapes", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
+        "geometry": {"length": 1.0, "width": 0.1, "height": 0.1},
+        "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
+        "supports": {"x0": "clamped", "xL": "free"},
+        "request": {"modes": 3, "shapes": {"nx": 11},
+                    "frf": {"excite": 1.0, "observe": 1.0, "omega_min": 10.0, "omega_max": 1000.0, "points": 5}},
+    }
+    r = mb.solve(mb.Scene.from_dict(d), "exact")
+    assert r.ok, r.message
+    w = r.shape("w")
+    assert w.shape == (3, 11)
+    assert np.all(w[:, 0] == 0.0)  # clamped at x = 0
+    assert r.frf_receptance.dtype == complex and r.frf_receptance.shape == (5,)
+    # Static tip compliance L^3 / (3 EI) is the receptance's limit at omega -> 0.
+    EI = 2.1e11 * 0.1**4 / 12
+    assert abs(r.frf_receptance[0].real * 3 * EI - 1) < 1e-3
+
+
+def test_the_gil_is_released_while_a_backend_works():
+    s = mb.load_scene(SCENES / "paper_ss_plate.toml")
+    ticks = 0
+    done = threading.Event()
+
+    def solve():
+        mb.solve(s, "rfem", mesh="60x36")
+        done.set()
+
+    t = threading.Thread(target=solve)
+    t.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    t.join()
+    # With the GIL held for the whole solve the main thread could not have run in between.
+    assert ticks > 5
