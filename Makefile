@@ -52,7 +52,7 @@ bench: build
 
 # The address and undefined-behaviour sanitizer build, with the whole test suite.
 sanitize: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMODALBENCH_SANITIZE=ON
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMODALBENCH_SANITIZE=ON -DMODALBENCH_PYTHON=OFF
 	cmake --build build-asan -j $(JOBS)
 	ctest --test-dir build-asan --output-on-failure -j $(JOBS)
 
