@@ -191,6 +191,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
     sum.set_diagnostic("max_eigen_residual", md.max_residual);
     sum.note_backward_error(md.max_backward_error);
     for (const auto& w : md.warnings) sum.warnings.push_back(w);
+    for (const auto& f : md.fallbacks) sum.fallbacks.push_back(f);
     const long shown = std::min<long>(k, md.lambda.size());
     for (long i = 0; i < shown; ++i) {
       const double lam = md.lambda[i];

@@ -58,11 +58,17 @@ struct Modes {
   double max_backward_error = 0;
   bool converged = true;
   std::vector<std::string> warnings;
+  std::vector<std::string> fallbacks;  ///< each fall-back taken, with why
   double factor_seconds = 0, eigen_seconds = 0;
 };
 
-/// Throws std::runtime_error on a failed factorization of a matrix that must be definite.
+/// Throws std::runtime_error on a failed factorization of a matrix that must be definite. With
+/// EigenMethod::Auto, Lanczos pairs whose backward error misses the check are solved again by the
+/// dense path (refined) where that is affordable (up to kDenseFallbackLimit coordinates), and the
+/// better set is kept; a fall-back taken is recorded.
 Modes solve_modes(const Model& model, const System& sys, const ModeOptions& options);
+/// Coordinates up to which the dense path is affordable as a fall-back (measured: 0.3 s at 510).
+inline constexpr long kDenseFallbackLimit = 600;
 
 struct StaticSolution {
   bool ok = false;
