@@ -53,9 +53,14 @@ LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : mo
         Eigen::JacobiSVD<Eigen::MatrixXd> svd(raw, Eigen::ComputeThinU);
         if (svd.info() != Eigen::Success) throw std::runtime_error("dtfm: SVD of the end conditions failed");
         const auto& sv = svd.singularValues();
+        // Relative to the size of the map, not to the largest singular value: an end whose
+        // admissible motions all lie outside this class projects to rounding noise, whose
+        // largest value must not pass as an admissible direction (a pinned end of a 2 x 2
+        // section let the axial class move freely: rigid 0 and the free-free axial mode).
+        const double map_scale = line->Winv.norm();
         int r = 0;
         for (Eigen::Index i = 0; i < sv.size(); ++i)
-          if (sv[i] > 1e-10 * std::max(sv[0], 1e-300)) ++r;
+          if (sv[i] > 1e-10 * map_scale) ++r;
         Nc = svd.matrixU().leftCols(r);
       }
       ce.n_free = static_cast<int>(Nc.cols());

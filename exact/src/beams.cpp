@@ -68,7 +68,7 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
     f[2 * n] += p.force * L * L / beam.EI;
     f[2 * n + 1] += moment_sign * p.moment * L / beam.EI;
   }
-  const Eigen::VectorXd d = asmb.K.solve(f);
+  const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
   std::vector<BendingResponse> out;
   for (double x : probes) {
     const int n = asmb.node_at(x / L);
@@ -88,7 +88,7 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes());
   for (auto& p : loads) f[asmb.node_at(p.x / bar.L)] += p.force * bar.L / bar.S;
-  const Eigen::VectorXd d = asmb.K.solve(f);
+  const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
   std::vector<double> out;
   for (double x : probes) out.push_back(d[asmb.node_at(x / bar.L)]);
   return out;
@@ -102,7 +102,7 @@ double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings righ
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
   f[2 * asmb.node_at(excite / beam.L)] = beam.L * beam.L / beam.EI;
-  const Eigen::VectorXd d = asmb.K.solve(f);
+  const Eigen::VectorXd d = solve_line(line.sys, asmb, omega * omega, f);
   return d[2 * asmb.node_at(observe / beam.L)] * beam.L;
 }
 

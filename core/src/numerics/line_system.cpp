@@ -1,7 +1,10 @@
 #include "modalbench/numerics/line_system.hpp"
 
+#include <unsupported/Eigen/MatrixFunctions>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -15,7 +18,9 @@ int AssembledLine::node_at(double x) const {
   throw std::invalid_argument("no node at xi = " + std::to_string(x));
 }
 
-AssembledLine assemble(const LineSystem& sys, double lambda) {
+namespace {
+
+std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
   const int m = sys.m;
   if (static_cast<int>(sys.left_spring.size()) != m || static_cast<int>(sys.right_spring.size()) != m)
     throw std::invalid_argument("LineSystem: end springs must have m entries");
@@ -38,6 +43,177 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
     for (int j = 1; j < n; ++j) xi.push_back(breaks[g] + len * j / n);
     xi.push_back(breaks[g + 1]);
   }
+  return xi;
+}
+
+/// The rigid motions of the unsupported line (LineRigidity in the header).
+struct Rigid {
+  LineRigidity info;
+  Eigen::MatrixXd Add;  // A_dd(0): Phi(xi) = exp(Add xi)
+  Eigen::MatrixXd Rc;   // m x m: Phi(xi) Rc has unit value at one anchor, zero at the others
+  struct Anchor {
+    int end = 0, dof = 0;
+  };
+  std::vector<Anchor> anchors;
+  Eigen::MatrixXd psi(double xi) const {
+    const Eigen::MatrixXd X = Add * xi;
+    return Eigen::MatrixXd(X.exp()) * Rc;
+  }
+  int anchor_of(int end, int dof) const {
+    for (std::size_t a = 0; a < anchors.size(); ++a)
+      if (anchors[a].end == end && anchors[a].dof == dof) return static_cast<int>(a);
+    return -1;
+  }
+};
+
+double end_spring(const LineSystem& sys, int end, int dof) { return end ? sys.right_spring[dof] : sys.left_spring[dof]; }
+
+Rigid rigid_of(const LineSystem& sys) {
+  Rigid R;
+  const int m = sys.m;
+  const Eigen::MatrixXd A0 = sys.state_matrix(0.0);
+  if (!(A0.bottomLeftCorner(m, m).array() == 0.0).all()) return R;
+  R.Add = A0.topLeftCorner(m, m);
+  struct Candidate {
+    int end, dof;
+    double k;
+    Eigen::RowVectorXd row;
+  };
+  std::vector<Candidate> cand;
+  for (int end = 0; end < 2; ++end) {
+    const Eigen::MatrixXd X = R.Add * static_cast<double>(end);
+    const Eigen::MatrixXd phi = X.exp();
+    for (int j = 0; j < m; ++j) cand.push_back({end, j, end_spring(sys, end, j), phi.row(j)});
+  }
+  std::stable_sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) { return a.k > b.k; });
+  std::vector<Eigen::RowVectorXd> basis;
+  Eigen::MatrixXd G(m, m);
+  for (const Candidate& c : cand) {
+    if (static_cast<int>(R.anchors.size()) == m) break;
+    Eigen::RowVectorXd v = c.row;
+    for (const auto& q : basis) v -= v.dot(q) * q;
+    if (!(v.norm() > 1e-8 * c.row.norm())) continue;
+    basis.push_back(v / v.norm());
+    G.row(static_cast<Eigen::Index>(R.anchors.size())) = c.row;
+    R.anchors.push_back({c.end, c.dof});
+    if (std::isinf(c.k)) ++R.info.held_rank;
+    if (c.k == 0.0) ++R.info.free_rigid;
+  }
+  if (static_cast<int>(R.anchors.size()) != m) return R;  // cannot happen: Phi(0) = I
+  R.Rc = G.inverse();
+  R.info.available = true;
+  return R;
+}
+
+/// The line in rigid amplitudes a and anchored elastic displacements e (header: LineRigidity):
+/// [[E, B], [B^T, C]] [e; a] = [f_e; Psi^T f].
+struct Split {
+  BlockTridiagonal E;
+  Eigen::MatrixXd B, C;
+  std::vector<int> free_a;           // rigid amplitudes not held, in anchor (stiffness) order
+  std::vector<Eigen::MatrixXd> Psi;  // per node, m x m
+};
+
+Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<double>& xi, double lambda) {
+  const int m = sys.m, n = static_cast<int>(xi.size());
+  Split S{BlockTridiagonal(n, m), Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n) * m, m),
+          Eigen::MatrixXd::Zero(m, m), {}, {}};
+  for (double x : xi) S.Psi.push_back(R.psi(x));
+  const Eigen::MatrixXd A1 = sys.state_matrix(lambda), A0 = sys.state_matrix(0.0);
+  double last_h = -1;
+  SegmentDivided seg;
+  Eigen::MatrixXd Ps(2 * m, m);
+  for (int i = 0; i + 1 < n; ++i) {
+    const double h = xi[i + 1] - xi[i];
+    if (std::abs(h - last_h) > 1e-15 * h) {
+      seg = segment_dynamic_stiffness_divided(A1, A0, lambda, h);
+      last_h = h;
+    }
+    S.E.add_segment(i, seg.K);
+    if (lambda != 0.0) {
+      Ps << S.Psi[i], S.Psi[i + 1];
+      const Eigen::MatrixXd W = lambda * (seg.dK * Ps);  // K(lambda) Ps, K(0) Ps = 0
+      S.B.middleRows(static_cast<Eigen::Index>(i) * m, 2 * m) += W;
+      S.C.noalias() += Ps.transpose() * W;
+    }
+  }
+  std::vector<char> held_a(m, 0);
+  for (int end = 0; end < 2; ++end) {
+    const int node = end ? n - 1 : 0;
+    for (int j = 0; j < m; ++j) {
+      const double k = end_spring(sys, end, j);
+      const int a = R.anchor_of(end, j);
+      if (a >= 0) S.E.hold(node, j);
+      if (std::isinf(k)) {
+        // A held anchor holds its amplitude; any other held DOF depends on held anchors only
+        // (they were chosen first), so its rigid part is zero and e is held there too.
+        if (a >= 0) held_a[a] = 1;
+        else S.E.hold(node, j);
+        continue;
+      }
+      if (k == 0.0) continue;
+      const Eigen::RowVectorXd psi = S.Psi[node].row(j);
+      S.C.noalias() += k * psi.transpose() * psi;
+      if (a < 0) {
+        S.E.add_diagonal(node, j, k);
+        S.B.row(static_cast<Eigen::Index>(node) * m + j) += k * psi;
+      }
+    }
+  }
+  for (int a = 0; a < m; ++a)
+    if (!held_a[a]) S.free_a.push_back(a);
+  return S;
+}
+
+/// LDL^T without pivoting in the given (graded, stiffest first) order; returns the pivots.
+Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S) {
+  const Eigen::Index r = S.rows();
+  Eigen::VectorXd d(r);
+  for (Eigen::Index k = 0; k < r; ++k) {
+    d[k] = S(k, k);
+    if (d[k] == 0.0 || !std::isfinite(d[k])) {
+      for (Eigen::Index j = k; j < r; ++j) d[j] = S(j, j);
+      d[k] = d[k] == 0.0 ? 0.0 : std::numeric_limits<double>::quiet_NaN();
+      return d;
+    }
+    for (Eigen::Index i = k + 1; i < r; ++i) S(i, k) /= d[k];
+    for (Eigen::Index i = k + 1; i < r; ++i)
+      for (Eigen::Index j = k + 1; j <= i; ++j) S(i, j) -= S(i, k) * d[k] * S(j, k);
+  }
+  return d;
+}
+
+/// The condensed rigid block S = C - B^T E^-1 B over the free amplitudes, and E^-1 B.
+struct Condensed {
+  Eigen::MatrixXd S, Y;  // Y = E^-1 B (free columns)
+};
+Condensed condense(const Split& sp) {
+  const Eigen::Index r = static_cast<Eigen::Index>(sp.free_a.size());
+  Condensed c{Eigen::MatrixXd(r, r), Eigen::MatrixXd(sp.B.rows(), r)};
+  for (Eigen::Index q = 0; q < r; ++q) c.Y.col(q) = sp.E.solve(sp.B.col(sp.free_a[q]), 0.0);
+  for (Eigen::Index p = 0; p < r; ++p)
+    for (Eigen::Index q = 0; q < r; ++q) c.S(p, q) = sp.C(sp.free_a[p], sp.free_a[q]) - sp.B.col(sp.free_a[p]).dot(c.Y.col(q));
+  return c;
+}
+
+/// The count from the split, or -1 where its elastic part is not positive definite.
+int split_count(const Split& sp) {
+  const BlockTridiagonal::Inertia in = sp.E.inertia();
+  if (in.negative > 0 || in.zero > 0) return -1;
+  Condensed c = condense(sp);
+  const Eigen::VectorXd d = graded_ldlt(c.S);
+  int neg = 0;
+  for (Eigen::Index k = 0; k < d.size(); ++k) {
+    if (std::isnan(d[k])) return -1;
+    if (d[k] < 0) ++neg;
+  }
+  return neg;
+}
+}  // namespace
+
+AssembledLine assemble(const LineSystem& sys, double lambda) {
+  const int m = sys.m;
+  const std::vector<double> xi = line_nodes(sys, lambda);
   AssembledLine out{BlockTridiagonal(static_cast<int>(xi.size()), m), xi};
   const Eigen::MatrixXd A = sys.state_matrix(lambda);
   // Equal-length pieces share one segment matrix.
@@ -63,21 +239,91 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
 
 int count_below(const LineSystem& sys, double lambda) { return assemble(sys, lambda).K.inertia().negative; }
 
+LineRigidity line_rigidity(const LineSystem& sys) { return rigid_of(sys).info; }
+
+Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& f) {
+  const int m = sys.m;
+  const Rigid R = rigid_of(sys);
+  if (R.info.available) {
+    const Split sp = assemble_split(sys, R, asmb.xi, lambda);
+    const BlockTridiagonal::Inertia in = sp.E.inertia();
+    if (in.negative == 0 && in.zero == 0) {
+      if (lambda == 0.0 && R.info.free_rigid > 0)
+        throw std::runtime_error(
+            "mechanism: " + std::to_string(R.info.free_rigid) +
+            " rigid-body motion(s) of the line are restrained by no support: static solve impossible");
+      const int n = static_cast<int>(asmb.xi.size());
+      const Eigen::Index r = static_cast<Eigen::Index>(sp.free_a.size());
+      Eigen::VectorXd fa = Eigen::VectorXd::Zero(m);
+      for (int i = 0; i < n; ++i) fa += sp.Psi[i].transpose() * f.segment(static_cast<Eigen::Index>(i) * m, m);
+      const Eigen::VectorXd y = sp.E.solve(f, 0.0);
+      Condensed c = condense(sp);
+      Eigen::VectorXd rhs(r);
+      for (Eigen::Index p = 0; p < r; ++p) rhs[p] = fa[sp.free_a[p]] - sp.B.col(sp.free_a[p]).dot(y);
+      Eigen::MatrixXd L = c.S;
+      const Eigen::VectorXd d = graded_ldlt(L);
+      for (Eigen::Index k = 0; k < r; ++k)
+        if (!(d[k] != 0.0 && std::isfinite(d[k])))
+          throw std::runtime_error("dynamic stiffness matrix is singular to working precision in the rigid-body "
+                                   "motions of the line (a mechanism, or omega at a natural frequency)");
+      // L D L^T a = rhs, unit lower L below the diagonal.
+      Eigen::VectorXd a_free = rhs;
+      for (Eigen::Index i = 0; i < r; ++i)
+        for (Eigen::Index j = 0; j < i; ++j) a_free[i] -= L(i, j) * a_free[j];
+      for (Eigen::Index i = 0; i < r; ++i) a_free[i] /= d[i];
+      for (Eigen::Index i = r; i-- > 0;)
+        for (Eigen::Index j = i + 1; j < r; ++j) a_free[i] -= L(j, i) * a_free[j];
+      Eigen::VectorXd a = Eigen::VectorXd::Zero(m);
+      for (Eigen::Index p = 0; p < r; ++p) a[sp.free_a[p]] = a_free[p];
+      Eigen::VectorXd e = y - c.Y * a_free;
+      Eigen::VectorXd out(f.size());
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+          const Eigen::Index row = static_cast<Eigen::Index>(i) * m + j;
+          out[row] = sp.Psi[i].row(j).dot(a) + (sp.E.held(i, j) ? 0.0 : e[row]);
+        }
+      return out;
+    }
+  }
+  return asmb.K.solve(f);
+}
+
 LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats) {
   LineSpectrum out;
-  const double delta = kRigidThreshold * std::abs(lambda_hint);
+  const double scale = std::abs(lambda_hint);
+  const Rigid R = rigid_of(sys);
+  // Lines whose held supports leave rigid motions free count through the rigid split below
+  // half the scale (where near-rigid modes live and the anchored line is positive definite).
+  const bool split = R.info.available && R.info.held_rank < sys.m;
   auto N = [&](double lam) {
+    if (split && lam < 0.5 * scale) {
+      const Split sp = assemble_split(sys, R, line_nodes(sys, lam), lam);
+      if (stats) stats->max_unknowns = std::max<long>(stats->max_unknowns, sp.E.free_dofs() + sys.m);
+      const int c = split_count(sp);
+      if (c >= 0) return c;
+    }
     const AssembledLine a = assemble(sys, lam);
     if (stats) stats->max_unknowns = std::max<long>(stats->max_unknowns, a.K.free_dofs());
     return a.K.inertia().negative;
   };
+  const double delta = kRigidThreshold * scale;
   const int below = N(-delta);
   if (below != 0)
     throw std::runtime_error("the system has " + std::to_string(below) +
                              " negative eigenvalue(s) omega^2 < 0: it is unstable, not a vibrating structure");
-  out.rigid = std::min(N(delta), k);
+  double lo = delta;
+  if (R.info.available) {
+    // Rigid-body modes are exactly the motions no support restrains; every other eigenvalue is
+    // resolved down to 1e-250 of the scale.
+    lo = 1e-250 * scale;
+    const int n_lo = N(lo);
+    out.rigid = std::min(n_lo, k);
+    out.unresolved = std::max(0, out.rigid - R.info.free_rigid);
+  } else {
+    out.rigid = std::min(N(delta), k);
+  }
   out.lambdas.assign(out.rigid, 0.0);
-  auto rest = slice_spectrum(N, k - out.rigid, delta, lambda_hint, 1e-13, stats);
+  auto rest = slice_spectrum(N, k - out.rigid, lo, lambda_hint, 1e-13, stats);
   out.lambdas.insert(out.lambdas.end(), rest.begin(), rest.end());
   if (stats) stats->count_evaluations += 2;
   return out;

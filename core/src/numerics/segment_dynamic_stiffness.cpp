@@ -3,6 +3,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -79,6 +80,59 @@ Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, do
 Eigen::MatrixXcd segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, double* asymmetry,
                                            double* log_abs_det_tdf) {
   return segment_dsm_impl(A, h, asymmetry, log_abs_det_tdf);
+}
+
+SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda, const Eigen::MatrixXd& A_0,
+                                                 double lambda, double h) {
+  const Eigen::Index n2 = A_lambda.rows();
+  if (A_lambda.cols() != n2 || A_0.rows() != n2 || A_0.cols() != n2 || n2 % 2 != 0)
+    throw std::invalid_argument("segment_dynamic_stiffness_divided: state matrices must be square, even, equal");
+  SegmentDivided out;
+  if (lambda == 0.0) {
+    out.K = segment_dynamic_stiffness(A_0, h);
+    out.dK = Eigen::MatrixXd::Zero(n2, n2);
+    return out;
+  }
+  const Eigen::Index m = n2 / 2;
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(2 * n2, 2 * n2);
+  X.topLeftCorner(n2, n2) = A_lambda * h;
+  X.topRightCorner(n2, n2) = (A_lambda - A_0) * (h / lambda);
+  X.bottomRightCorner(n2, n2) = A_0 * h;
+  // One diagonal scaling for both copies of the state, from A(0) h: balancing the block matrix
+  // itself would chase entries of size lambda (1e-250 near a rigid mode) to extreme scales.
+  Eigen::MatrixXd B0 = A_0 * h;
+  const Eigen::VectorXd s0 = balance_in_place(B0, 20);
+  Eigen::VectorXd scale(2 * n2);
+  scale << s0, s0;
+  X = scale.cwiseInverse().asDiagonal() * X * scale.asDiagonal();
+  const Eigen::MatrixXd E = scale.asDiagonal() * Eigen::MatrixXd(X.exp()) * scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd T1 = E.topLeftCorner(n2, n2), dT = E.topRightCorner(n2, n2), T0 = E.bottomRightCorner(n2, n2);
+  auto blocks = [m](const Eigen::MatrixXd& T) {
+    return std::array<Eigen::MatrixXd, 4>{T.topLeftCorner(m, m), T.topRightCorner(m, m), T.bottomLeftCorner(m, m),
+                                          T.bottomRightCorner(m, m)};
+  };
+  const auto [dd1, df1, fd1, ff1] = blocks(T1);
+  const auto [dd0, df0, fd0, ff0] = blocks(T0);
+  const auto [ddd, ddf, dfd, dff] = blocks(dT);
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu1(df1), lu0(df0);
+  if (!(lu1.rcond() >= 1e-14) || !(lu0.rcond() >= 1e-14))
+    throw std::runtime_error("segment dynamic stiffness: the transfer block Tdf is singular to working precision");
+  const Eigen::MatrixXd U1 = lu1.inverse(), U0 = lu0.inverse();
+  const Eigen::MatrixXd K11_1 = U1 * dd1, K11_0 = U0 * dd0;
+  const Eigen::MatrixXd dU = -U1 * ddf * U0;
+  const Eigen::MatrixXd dK11 = dU * dd0 + U1 * ddd;
+  Eigen::MatrixXd K(n2, n2), dK(n2, n2);
+  K.topLeftCorner(m, m) = K11_1;
+  K.topRightCorner(m, m) = -U1;
+  K.bottomLeftCorner(m, m) = fd1 - ff1 * K11_1;
+  K.bottomRightCorner(m, m) = ff1 * U1;
+  dK.topLeftCorner(m, m) = dK11;
+  dK.topRightCorner(m, m) = -dU;
+  dK.bottomLeftCorner(m, m) = dfd - (dff * K11_0 + ff1 * dK11);
+  dK.bottomRightCorner(m, m) = dff * U0 + ff1 * dU;
+  out.K = 0.5 * (K + K.transpose());
+  out.dK = 0.5 * (dK + dK.transpose());
+  return out;
 }
 
 LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels) {

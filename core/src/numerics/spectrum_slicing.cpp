@@ -40,11 +40,14 @@ std::vector<double> slice_spectrum(const std::function<int(double)>& count, int 
     stack.pop_back();
     if (iv.n_lo >= want || iv.n_hi == iv.n_lo) continue;
     const double width = iv.hi - iv.lo;
-    if (width <= std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol)) {
+    // An interval away from zero is narrowed relative to its values (so an eigenvalue of 1e-30
+    // lambda_hint keeps its digits); one that reaches zero down to abs_tol.
+    if (width <= std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), iv.lo > 0 ? 0.0 : abs_tol)) {
       found.emplace_back(0.5 * (iv.lo + iv.hi), std::min(iv.n_hi, want) - iv.n_lo);
       continue;
     }
-    const double mid = 0.5 * (iv.lo + iv.hi);
+    // Geometric midpoints while the interval spans orders of magnitude above zero.
+    const double mid = iv.lo > 0 && iv.hi > 4.0 * iv.lo ? std::sqrt(iv.lo) * std::sqrt(iv.hi) : 0.5 * (iv.lo + iv.hi);
     const int n_mid = N(mid);
     if (n_mid < iv.n_lo || n_mid > iv.n_hi)
       throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +

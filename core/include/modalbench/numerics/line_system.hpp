@@ -46,12 +46,44 @@ AssembledLine assemble(const LineSystem& sys, double lambda);
 /// Number of natural frequencies with omega^2 < lambda (Wittrick-Williams).
 int count_below(const LineSystem& sys, double lambda);
 
-/// Eigenvalues below kRigidThreshold * lambda_hint are rigid-body modes (exactly 0).
+/// The rigid-body motions of the unsupported line and how its end springs act on them.
+///
+/// When A(0) has no displacement-to-force block (A_fd(0) = 0: nothing ties the line to the
+/// ground), every d(xi) = Phi(xi) c with Phi = exp(A_dd(0) xi) and f = 0 solves the static field
+/// equations: m rigid motions. The end DOFs are taken in order of decreasing spring stiffness
+/// (held ones first) and the first m whose rows of Phi are independent become the anchors; the
+/// rigid basis has unit value at one anchor and zero at the others. Then the line is written as
+/// d_i = Psi_i a + e_i with e = 0 at the anchors: the elastic part e sees a line held at its
+/// anchors (positive definite below its first natural frequency), the rigid amplitudes a see the
+/// springs and the inertia of the rigid motions, both formed without the cancellation of
+/// K(0) Psi = 0 (segment_dynamic_stiffness_divided). In anchor order the condensed r x r matrix is
+/// graded from the stiffest spring down, so an LDL^T without pivoting keeps the relative accuracy
+/// of its smallest pivot: near-rigid modes (springs of 1e-12 of the beam's stiffness) and
+/// near-mechanism statics (springs spanning 25 orders) keep their digits.
+struct LineRigidity {
+  bool available = false;  ///< A_fd(0) = 0: the line has m rigid motions
+  int held_rank = 0;       ///< how many of them the held (infinite) end springs stop
+  int free_rigid = 0;      ///< how many no end spring (finite or infinite) restrains: true rigid modes
+};
+LineRigidity line_rigidity(const LineSystem& sys);
+
+/// Solves K(lambda) d = f on `asmb` (built by assemble(sys, lambda) or with the same nodes).
+/// Uses the rigid-body split above where the line has rigid motions and its anchored elastic
+/// part is positive definite at lambda, otherwise the block LDL^T of asmb.K. Throws
+/// std::runtime_error naming a mechanism (a rigid motion no spring restrains) or a singular K.
+Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& f);
+
+/// Eigenvalues below kRigidThreshold * lambda_hint count as rigid-body modes (exactly 0) only on
+/// lines without rigid motions of their own (line_rigidity().available false); lines with them
+/// report exactly their free_rigid modes as rigid and resolve every other one, however small.
 inline constexpr double kRigidThreshold = 1e-10;
 
 struct LineSpectrum {
   std::vector<double> lambdas;  ///< lowest k values of omega^2, ascending; rigid ones are 0
   int rigid = 0;                ///< how many of them are rigid-body modes
+  /// Eigenvalues below 1e-250 lambda_hint (beyond double precision: reported as 0 and counted
+  /// in `rigid`, but not rigid-body modes of the model); callers should flag them.
+  int unresolved = 0;
 };
 /// The lowest k eigenvalues lambda = omega^2 of a line system. `lambda_hint` sets the
 /// scale (e.g. the lambda at which the dimensionless frequency is 1).

@@ -25,6 +25,21 @@ namespace modalbench {
 Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry = nullptr,
                                           double* log_abs_det_tdf = nullptr);
 
+/// K_seg(lambda) together with its divided difference dK = (K_seg(lambda) - K_seg(0)) / lambda,
+/// both to working precision relative to their own size: dK is not the difference of two
+/// computed K (which loses every digit of lambda dK below the rounding of K(0)) but follows from
+/// one exponential of the block matrix [[A(lambda) h, dA h], [0, A(0) h]], dA = (A(lambda) -
+/// A(0)) / lambda, whose upper right block is (T(lambda) - T(0)) / lambda exactly (Van Loan
+/// 1978), by the product rules d(XY) = dX Y(0) + X(lambda) dY, d(X^-1) = -X(lambda)^-1 dX X(0)^-1.
+/// K(0) times a rigid motion is zero analytically, so K(lambda) times it is lambda dK times it,
+/// with no cancellation: what the near-rigid modes and near-mechanism statics of a line need.
+/// lambda = 0 gives dK = 0 (and K = K(0)).
+struct SegmentDivided {
+  Eigen::MatrixXd K, dK;
+};
+SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda, const Eigen::MatrixXd& A_0,
+                                                 double lambda, double h);
+
 /// A long segment's dynamic stiffness by repeated doubling: a base piece of length
 /// h / 2^levels from exp(A h / 2^levels), then `levels` times two equal pieces joined by
 /// condensing their middle node (S = K22 + K11; K_2h = [[K11 - K12 S^-1 K21, -K12 S^-1 K12],

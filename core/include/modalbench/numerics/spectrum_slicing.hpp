@@ -13,7 +13,9 @@ namespace modalbench {
 /// whose counting function is `count(lambda)` = number of eigenvalues < lambda;
 /// `lambda_hint` is a scale (the bracket grows from it until it holds k more). Repeated
 /// eigenvalues are returned repeatedly. Bisection to `rel_tol` relative (1e-8 of that
-/// relative to `lambda_hint` near zero). Throws std::runtime_error if the count is not
+/// relative to `lambda_hint` in an interval that reaches zero); above a positive `lambda_lo`
+/// it is geometric while an interval spans orders of magnitude, so tiny eigenvalues keep
+/// their relative accuracy. Throws std::runtime_error if the count is not
 /// monotonic (numerical breakdown) or cannot be bracketed.
 struct SliceStats {
   long count_evaluations = 0;
