@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "analysis_detail.hpp"
+#include "modalbench/numerics/line_system.hpp"
 
 namespace modalbench::dtfm {
 
@@ -23,8 +24,28 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
   for (const auto& p : probes) required.push_back(p[0]);
   const int m = model_.m;
   std::vector<Eigen::VectorXd> qp(probes.size(), Eigen::VectorXd::Zero(m));
+  // Each class's share of the loads (physical units): a class is unloaded when its share is
+  // rounding of the total (a moment at an end leaks 1e-17 of itself into other classes), not
+  // when it is exactly 0.
+  std::vector<double> share(lines_.size(), 0.0);
+  double total_share = 0;
+  for (std::size_t ci = 0; ci < lines_.size(); ++ci) {
+    for (const auto& p : loads) share[ci] += (lines_[ci]->W.transpose() * model_.load_vector(p)).squaredNorm();
+    total_share += share[ci];
+  }
   for (const auto& line : lines_) {
     ClassLine& c = *line;
+    if (!(share[static_cast<std::size_t>(c.index)] > 1e-24 * total_share)) continue;
+    // A loaded class must be free of rigid-body motions (structurally, by its count just above
+    // zero): its static solve would otherwise give rounding noise divided by rounding noise.
+    {
+      const double delta = kRigidThreshold * model_.lambda_scale;
+      const Mesh near_zero = mesh_for(c, delta, {});
+      if (const int rigid = count_det(c, delta, near_zero).count; rigid > 0)
+        throw std::runtime_error(fmt::format(
+            "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free ({} / {})", rigid,
+            to_string(c.family), model_.ends[0].text, model_.ends[1].text));
+    }
     const Mesh mesh = mesh_for(c, 0.0, required);
     const auto& x = mesh.x;
     const int nn = static_cast<int>(x.size());
@@ -41,7 +62,6 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       if (i == nn - 1) fc = c.ends[1].B.transpose() * fc;
       f.segment(static_cast<Eigen::Index>(i) * c.mc, c.mc) += fc;
     }
-    if (f.norm() == 0.0) continue;
     const Assembled a = assemble(c, 0.0, mesh);
     Eigen::VectorXd d;
     try {
