@@ -136,7 +136,11 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
       r.deflections = la.statics(scene.loads, scene.request.probes);
     } catch (const std::runtime_error& e) {
       r.deflections.clear();
-      sum.raise(Status::InvalidInput, scene.source + ": supports: static solve impossible: " + e.what());
+      // Only a mechanism is the input's fault; any other failure is a numerical breakdown.
+      if (std::string(e.what()).rfind("mechanism", 0) == 0)
+        sum.raise(Status::InvalidInput, scene.source + ": supports: static solve impossible: " + e.what());
+      else
+        sum.raise(Status::NumericalIssue, std::string("dtfm: statics: ") + e.what());
     }
     sum.timings_s.statics += timer.lap();
   }

@@ -120,7 +120,11 @@ void beam_statics(const Scene& s, Result& r) {
     }
     r.deflections = defl;
   } catch (const std::runtime_error& e) {
-    r.summary.raise(Status::InvalidInput, s.source + ": supports: static solve impossible: " + e.what());
+    // Only a mechanism is the input's fault; any other failure is a numerical breakdown.
+    if (std::string(e.what()).rfind("mechanism", 0) == 0)
+      r.summary.raise(Status::InvalidInput, s.source + ": supports: static solve impossible: " + e.what());
+    else
+      r.summary.raise(Status::NumericalIssue, std::string("exact: statics: ") + e.what());
   }
 }
 

@@ -260,3 +260,32 @@ BOOST_AUTO_TEST_CASE(dtfm_mechanism_check_does_not_depend_on_load_size) {
     BOOST_TEST(std::abs(w2 - w0) > 1e-7 * std::abs(w0));  // the moment does act
   }
 }
+
+// Issue 18 (3, in part): a load and a probe 3.3e-7 m apart on a cantilever. Whatever a back-end
+// makes of the tiny segment between them, it is not the user's supports: never invalid-input,
+// never blamed on the supports; and a success must be right (closed form P x^2 (3a - x) / (6 EI)).
+BOOST_AUTO_TEST_CASE(close_points_are_not_blamed_on_the_supports) {
+  Scene s = eb_beam(1.0, 0.1, 0.1, 2.1e11, 7850, Support::named("clamped"), Support::named("free"));
+  PointLoad p;
+  p.x = 0.3333333333333333;
+  p.Fz = 1000;
+  s.loads = {p};
+  s.request.probes = {{0.333333, 0.0}, {1.0, 0.0}};
+  validate(s);
+  const double EI = 2.1e11 * 1e-4 / 12, a = p.x;
+  const double w_probe = 1000 * 0.333333 * 0.333333 * (3 * a - 0.333333) / (6 * EI);
+  const double w_tip = 1000 * a * a * (3 * 1.0 - a) / (6 * EI);
+  for (const char* b : {"exact", "dtfm", "rfem"}) {
+    BOOST_TEST_CONTEXT(b) {
+      const Result r = run(b, s);
+      BOOST_TEST(to_string(r.summary.status) != "invalid-input", r.summary.message);
+      BOOST_TEST(r.summary.message.find("supports: static solve impossible") == std::string::npos,
+                 r.summary.message);
+      if (r.summary.status == Status::Success) {
+        BOOST_REQUIRE(r.deflections.size() == 2u);
+        BOOST_TEST(rel(r.deflections[0].w, w_probe) < 1e-3);
+        BOOST_TEST(rel(r.deflections[1].w, w_tip) < 1e-3);
+      }
+    }
+  }
+}
