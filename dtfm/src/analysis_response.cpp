@@ -43,7 +43,9 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       const Mesh near_zero = mesh_for(c, delta, {});
       if (const int rigid = count_det(c, delta, near_zero).count; rigid > 0)
         throw std::runtime_error(fmt::format(
-            "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free ({} / {})", rigid,
+            "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free, or restrain them "
+            "below 1e-10 of the model's stiffness scale, which dtfm cannot resolve ({} / {})",
+            rigid,
             to_string(c.family), model_.ends[0].text, model_.ends[1].text));
     }
     const Mesh mesh = mesh_for(c, 0.0, required);
