@@ -21,6 +21,7 @@ Frequencies to_frequencies(const LineSpectrum& spec, const SliceStats& st) {
   Frequencies f;
   f.unknowns = st.max_unknowns;
   f.rigid = spec.rigid;
+  f.unresolved = spec.unresolved;
   f.count_evaluations = st.count_evaluations;
   for (double lam : spec.lambdas) f.omega_rad_s.push_back(std::sqrt(std::max(lam, 0.0)));
   return f;

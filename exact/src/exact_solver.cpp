@@ -64,6 +64,11 @@ void note(Result& r, const Frequencies& f) {
   r.summary.set_diagnostic("count_evaluations", std::max(0.0, r.summary.diagnostic("count_evaluations")) +
                                                     static_cast<double>(f.count_evaluations));
   r.summary.unknowns = std::max(r.summary.unknowns, f.unknowns);
+  if (f.unresolved > 0)
+    r.summary.raise(Status::NumericalIssue,
+                    fmt::format("exact: {} eigenvalue(s) below 1e-250 of the frequency scale (springs too soft to "
+                                "resolve in double precision) are reported as 0 but are not rigid-body modes",
+                                f.unresolved));
 }
 
 void beam_modes(const Scene& s, ModeList& list, Result& r) {

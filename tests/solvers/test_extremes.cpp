@@ -289,3 +289,13 @@ BOOST_AUTO_TEST_CASE(close_points_are_not_blamed_on_the_supports) {
     }
   }
 }
+
+// Below what double precision resolves (springs of 1e-300 N/m: omega^2 ~ 1e-305 of the scale),
+// exact reports the modes as 0 but says so: not success, and named.
+BOOST_AUTO_TEST_CASE(unresolvably_soft_springs_are_flagged_not_called_rigid) {
+  Scene s = eb_beam(2.0, 0.05, 0.1, 200e9, 7800, springs(1e-300, 0), springs(1e-300, 0));
+  s.request.modes = 3;
+  const Result r = run("exact", s);
+  BOOST_TEST(to_string(r.summary.status) == "numerical-issue");
+  BOOST_TEST(r.summary.message.find("below 1e-250") != std::string::npos, r.summary.message);
+}

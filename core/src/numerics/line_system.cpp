@@ -165,17 +165,14 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
   return S;
 }
 
-/// LDL^T without pivoting in the given (graded, stiffest first) order; returns the pivots.
+/// LDL^T without pivoting in the given (graded, stiffest first) order; returns the pivots. A
+/// zero or non-finite pivot ends it: that pivot and the rest are NaN (callers fall back or refuse).
 Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S) {
   const Eigen::Index r = S.rows();
-  Eigen::VectorXd d(r);
+  Eigen::VectorXd d = Eigen::VectorXd::Constant(r, std::numeric_limits<double>::quiet_NaN());
   for (Eigen::Index k = 0; k < r; ++k) {
+    if (S(k, k) == 0.0 || !std::isfinite(S(k, k))) return d;
     d[k] = S(k, k);
-    if (d[k] == 0.0 || !std::isfinite(d[k])) {
-      for (Eigen::Index j = k; j < r; ++j) d[j] = S(j, j);
-      d[k] = d[k] == 0.0 ? 0.0 : std::numeric_limits<double>::quiet_NaN();
-      return d;
-    }
     for (Eigen::Index i = k + 1; i < r; ++i) S(i, k) /= d[k];
     for (Eigen::Index i = k + 1; i < r; ++i)
       for (Eigen::Index j = k + 1; j <= i; ++j) S(i, j) -= S(i, k) * d[k] * S(j, k);
@@ -239,8 +236,6 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
 
 int count_below(const LineSystem& sys, double lambda) { return assemble(sys, lambda).K.inertia().negative; }
 
-LineRigidity line_rigidity(const LineSystem& sys) { return rigid_of(sys).info; }
-
 Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& f) {
   const int m = sys.m;
   const Rigid R = rigid_of(sys);
@@ -263,7 +258,7 @@ Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, dou
       Eigen::MatrixXd L = c.S;
       const Eigen::VectorXd d = graded_ldlt(L);
       for (Eigen::Index k = 0; k < r; ++k)
-        if (!(d[k] != 0.0 && std::isfinite(d[k])))
+        if (std::isnan(d[k]))
           throw std::runtime_error("dynamic stiffness matrix is singular to working precision in the rigid-body "
                                    "motions of the line (a mechanism, or omega at a natural frequency)");
       // L D L^T a = rhs, unit lower L below the diagonal.

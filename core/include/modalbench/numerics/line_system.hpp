@@ -65,7 +65,6 @@ struct LineRigidity {
   int held_rank = 0;       ///< how many of them the held (infinite) end springs stop
   int free_rigid = 0;      ///< how many no end spring (finite or infinite) restrains: true rigid modes
 };
-LineRigidity line_rigidity(const LineSystem& sys);
 
 /// Solves K(lambda) d = f on `asmb` (built by assemble(sys, lambda) or with the same nodes).
 /// Uses the rigid-body split above where the line has rigid motions and its anchored elastic

@@ -14,6 +14,7 @@ struct EndSprings {
 struct Frequencies {
   std::vector<double> omega_rad_s;  ///< ascending, rigid-body modes as 0
   int rigid = 0;
+  int unresolved = 0;  ///< of the `rigid` zeros: eigenvalues below 1e-250 of the scale, not rigid-body modes
   long count_evaluations = 0;
   long unknowns = 0;  ///< largest assembled dynamic stiffness factorized (free DOFs)
 };
