@@ -141,6 +141,23 @@ int main(int argc, char** argv) {
   solve->add_option("--option,-o", backend_options,
                     "back-end option KEY=VALUE (repeatable; over the scene's [backend.NAME]; see `modalbench options`)");
   solve->add_flag("--json", json, "print one JSON object (schema in README.md)");
+  double max_memory_gb = 0, max_time_s = 600;
+  auto positive = [](double hi, const char* unit) {
+    return CLI::Validator(
+        [hi, unit](const std::string& text) -> std::string {
+          char* end = nullptr;
+          const double v = std::strtod(text.c_str(), &end);
+          if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0) || v > hi)
+            return fmt::format("must be a number of {} in (0, {:g}] (got '{}')", unit, hi, text);
+          return "";
+        },
+        unit, unit);
+  };
+  solve->add_option("--max-memory", max_memory_gb,
+                    "refuse a request estimated to need more peak memory, GB (default: 80 % of what this process may use)")
+      ->check(positive(1e6, "GB"));
+  solve->add_option("--max-time", max_time_s, "refuse a request estimated to run longer, seconds (default 600)")
+      ->check(positive(1e7, "seconds"));
   std::string vtk_dir;
   solve->add_option("--vtk", vtk_dir, "write the mode shapes and static deflections as VTK (.vtu) files into DIR");
 
@@ -211,6 +228,9 @@ int main(int argc, char** argv) {
           mesh_spec.empty() ? solver.default_mesh(scene) : mb::Discretization::parse(mesh_spec);
       mb::Options opt;
       opt.mass = mb::parse_mass_model(mass, "command line", "--mass");
+      opt.max_memory_bytes = max_memory_gb * 1e9;
+      opt.max_time_s = max_time_s;
+      opt.refine_to_tolerance = mesh_spec.empty();
       for (const auto& kv : backend_options) {
         const auto eq = kv.find('=');
         if (eq == std::string::npos || eq == 0)
@@ -224,7 +244,8 @@ int main(int argc, char** argv) {
       }
       if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
       else print_text(scene, backend, mesh, r);
-      if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported) {
+      if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported ||
+          r.summary.status == mb::Status::ResourceLimit) {
         if (json) std::cerr << "modalbench: " << r.summary.message << "\n";
         return 2;
       }

@@ -90,6 +90,7 @@ PYBIND11_MODULE(_modalbench, m) {
       mb::Options opt;
       opt.mass = mb::parse_mass_model(mass, "solve()", "mass");
       opt.backend = options;
+      opt.refine_to_tolerance = mesh_spec.empty();  // as the command line: a default mesh is refined to tolerance
       mb::Result r;
       {
         py::gil_scoped_release unlocked;

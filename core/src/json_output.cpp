@@ -16,7 +16,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   j["scene"] = scene.name;
   j["scene_file"] = scene.source;
   j["backend"] = backend;
-  j["mesh"] = mesh.spec();
+  j["mesh"] = r.summary.mesh.empty() ? mesh.spec() : r.summary.mesh;  // the default mesh may have been refined
   j["status"] = to_string(r.summary.status);
   j["message"] = r.summary.message;
   j["method"] = {{"requested", r.summary.method_requested},
@@ -104,7 +104,12 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   }
   const auto& t = r.summary.timings_s;
   j["timing_s"] = {{"build", t.build}, {"modes", t.modes}, {"statics", t.statics}, {"frf", t.frf},
-                   {"total", r.summary.total_time_s}};
+                   {"error_estimate", t.error_estimate}, {"total", r.summary.total_time_s}};
+  const auto& ee = r.summary.error_estimate;
+  j["error_estimate"] = {{"frequencies", num(ee.frequencies)}, {"deflections", num(ee.deflections)},
+                         {"tolerance", num(ee.tolerance)},     {"coarse_mesh", ee.coarse_mesh},
+                         {"ratio", num(ee.ratio)},             {"order", num(ee.order)},
+                         {"note", ee.note}};
   json diag = json::object();
   for (const auto& [name, v] : r.summary.diagnostics) diag[name] = num(v);
   j["diagnostics"] = diag;

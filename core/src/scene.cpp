@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 namespace modalbench {
@@ -90,6 +91,25 @@ std::vector<int> Scene::shape_components() const {
 double Scene::plate_D() const {
   const double h = geometry.height;
   return material.E * h * h * h / (12.0 * (1.0 - material.nu * material.nu));
+}
+
+std::pair<int, int> plate_half_waves(double a, double b, int k) {
+  k = std::max(1, k);
+  // Number of (m, n >= 1) with (m/a)^2 + (n/b)^2 <= lam.
+  auto count = [&](double lam) {
+    double c = 0;
+    for (int m = 1; m / a <= std::sqrt(lam) && c < 1e12; ++m) c += std::floor(b * std::sqrt(lam - (m / a) * (m / a)));
+    return c;
+  };
+  double lo = 0, hi = 1.0 / (a * a) + 1.0 / (b * b);
+  while (count(hi) < k) hi *= 4;
+  for (int it = 0; it < 100 && hi - lo > 1e-12 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (count(mid) >= k ? hi : lo) = mid;
+  }
+  const int m_max = static_cast<int>(std::floor(a * std::sqrt(std::max(0.0, hi - 1 / (b * b))) + 1e-9));
+  const int n_max = static_cast<int>(std::floor(b * std::sqrt(std::max(0.0, hi - 1 / (a * a))) + 1e-9));
+  return {std::max(1, m_max), std::max(1, n_max)};
 }
 
 }  // namespace modalbench

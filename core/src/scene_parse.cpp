@@ -221,12 +221,17 @@ void read_shapes(const Reader& r, const toml::node& n, Scene& s) {
   s.request.shapes = sr;
 }
 
-/// [request]: modes, probes, frf, shapes.
+/// [request]: modes, probes, frf, shapes, tolerance.
 void read_request(const Reader& r, const toml::table& root, Scene& s) {
   if (const toml::node* rn = root.get("request")) {
     auto t = rn->as_table();
     if (!t) r.fail("request", "must be a table");
-    r.only_keys(*t, "request", {"modes", "probes", "frf", "shapes"});
+    r.only_keys(*t, "request", {"modes", "probes", "frf", "shapes", "tolerance"});
+    if (auto tol = r.opt_number(*t, "request", "tolerance")) {
+      if (!(*tol >= 1e-14 && *tol <= 1.0))
+        r.fail("request.tolerance", fmt::format("must lie in [1e-14, 1] (relative error; got {})", *tol));
+      s.request.tolerance = *tol;
+    }
     if (auto k = r.opt_integer(*t, "request", "modes")) {
       if (*k < 0 || *k > 100000) r.fail("request.modes", fmt::format("must lie in [0, 100000] (got {})", *k));
       s.request.modes = static_cast<int>(*k);

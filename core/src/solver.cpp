@@ -9,6 +9,9 @@
 #include <new>
 #include <cmath>
 #include <stdexcept>
+#include <fstream>
+#include <sys/resource.h>
+#include <unistd.h>
 
 namespace modalbench {
 
@@ -196,11 +199,128 @@ std::string ResolvedOptions::given() const {
   return out.empty() ? "defaults" : out;
 }
 
+double default_memory_limit() {
+  double avail = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (!(avail > 0)) avail = 8.0 * (1ull << 30);
+  // An address-space limit counts what the process has mapped already (libraries, thread stacks).
+  double mapped = 0;
+  {
+    std::ifstream statm("/proc/self/statm");
+    double pages = 0;
+    if (statm >> pages) mapped = pages * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  }
+  for (int which : {RLIMIT_AS, RLIMIT_DATA}) {
+    rlimit rl{};
+    if (getrlimit(which, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
+      avail = std::min(avail, std::max(0.0, static_cast<double>(rl.rlim_cur) - mapped));
+  }
+  return 0.8 * avail;
+}
+
+namespace {
+
+/// Maps the first pages of this thread's stack now. The main thread's stack grows on demand, and
+/// under an address-space limit (ulimit -v) that growth fails once the heap has taken the rest:
+/// the next deep call (Eigen keeps temporaries of up to 128 KB on the stack) is then a SIGSEGV
+/// instead of a std::bad_alloc the solver can report. Linux never unmaps grown stack pages.
+[[gnu::noinline]] void map_stack_pages() {
+  static thread_local bool done = false;
+  if (done) return;
+  done = true;
+  rlimit rl{};
+  std::size_t bytes = std::size_t(2) << 20;
+  if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
+    bytes = std::min<std::size_t>(bytes, static_cast<std::size_t>(rl.rlim_cur) / 4);
+  volatile char* p = static_cast<volatile char*>(__builtin_alloca(bytes));
+  for (std::size_t i = 0; i < bytes; i += 4096) p[i] = 0;
+}
+
+/// Peak resident memory of this process so far (VmHWM), bytes; NaN where unknown.
+double peak_resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      double kb = 0;
+      status >> kb;
+      return kb * 1024.0;
+    }
+    status.ignore(1 << 12, '\n');
+  }
+  return kNotMeasured;
+}
+
+std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e9); }
+
+/// Richardson estimate of `fine`'s discretization error from `coarse` (same request on a mesh
+/// `ratio` times coarser); returns the estimate and what exceeds the scene's tolerance.
+std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Scene& scene, const std::string& coarse_spec,
+                                                                        double ratio, double order, const Result& fine,
+                                                                        const Result& coarse) {
+  ErrorEstimate e;
+  e.tolerance = scene.request.tolerance;
+  e.coarse_mesh = coarse_spec;
+  e.ratio = ratio;
+  e.order = order;
+  const double denom = std::pow(ratio, order) - 1.0;
+  std::vector<std::string> problems;
+  if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty()) {
+    const auto& f = fine.frequencies_rad_s;
+    const auto& c = coarse.frequencies_rad_s;
+    const std::size_t n = std::min(f.size(), c.size());
+    double worst = 0;
+    std::size_t worst_mode = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (f[i] == 0 && c[i] == 0) continue;  // rigid-body modes on both meshes
+      const double rel = std::abs(f[i] - c[i]) / denom / std::max(std::abs(f[i]), std::abs(c[i]));
+      if (!(rel <= worst)) {
+        worst = rel;
+        worst_mode = i + 1;
+      }
+    }
+    e.frequencies = worst;
+    if (n < f.size())
+      problems.push_back(fmt::format("frequencies: modes {}..{} have no counterpart on the coarser mesh {}, so their "
+                                     "discretization error is not estimated", n + 1, f.size(), coarse_spec));
+    if (!(worst <= e.tolerance))
+      problems.push_back(fmt::format("frequencies: estimated discretization error {:.2g} (mode {}; mesh {} against {}, "
+                                     "Richardson of order {:g}) exceeds the tolerance {:.2g} ([request] tolerance): "
+                                     "use a finer mesh",
+                                     worst, worst_mode, fine.summary.mesh, coarse_spec, order, e.tolerance));
+  }
+  if (!scene.request.probes.empty() && fine.deflections.size() == coarse.deflections.size() &&
+      !fine.deflections.empty()) {
+    double scale = 0, worst = 0;
+    for (const auto& d : fine.deflections) scale = std::max({scale, std::abs(d.u), std::abs(d.v), std::abs(d.w)});
+    if (scale > 0) {
+      for (std::size_t i = 0; i < fine.deflections.size(); ++i) {
+        const auto& x = fine.deflections[i];
+        const auto& y = coarse.deflections[i];
+        for (double d : {x.u - y.u, x.v - y.v, x.w - y.w})
+          worst = std::isfinite(d) ? std::max(worst, std::abs(d) / denom / scale) : std::numeric_limits<double>::infinity();
+      }
+      e.deflections = worst;
+      if (!(worst <= e.tolerance))
+        problems.push_back(fmt::format("deflections: estimated discretization error {:.2g} of the largest deflection "
+                                       "(mesh {} against {}) exceeds the tolerance {:.2g} ([request] tolerance): use a "
+                                       "finer mesh",
+                                       worst, fine.summary.mesh, coarse_spec, e.tolerance));
+    }
+  }
+  e.note = fmt::format("Richardson: |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), relative", fine.summary.mesh,
+                       coarse_spec, ratio, order);
+  return {e, problems};
+}
+
+}  // namespace
+
 Result Solver::solve(const Scene& scene, const Discretization& mesh, const Options& options) const {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
+  map_stack_pages();
   Result result;
   auto& sum = result.summary;
+  sum.mesh = mesh.spec();
   try {
     validate(scene);
     Options opt = options;
@@ -217,14 +337,118 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     const bool can_something = (rq.modes > 0 && cap.modes) || (!rq.probes.empty() && cap.statics) || (rq.frf && cap.frf);
     if (!cap.any() || (wants_something && !can_something)) {
       sum.raise(Status::Unsupported, cap.reason.empty() ? "nothing requested is supported" : cap.reason);
-    } else {
-      do_solve(scene, mesh, opt, result);
-      if (!missing.empty()) {
-        std::string what;
-        for (const auto& m : missing) what += (what.empty() ? "" : ", ") + m;
-        sum.warnings.push_back("not computed: " + what + (cap.reason.empty() ? "" : " (" + cap.reason + ")"));
-      }
+      sum.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
+      return result;
     }
+    // The coarser mesh of the error estimate is part of the request's cost.
+    const std::optional<CoarserMesh> coarse =
+        opt.estimate_error && (rq.modes > 0 || !rq.probes.empty()) ? coarser_mesh(scene, mesh, opt) : std::nullopt;
+    ResourceEstimate est = estimate(scene, mesh, opt);
+    if (coarse) {
+      Scene cs = scene;
+      cs.request.frf.reset();
+      cs.request.shapes.reset();
+      const ResourceEstimate ce = estimate(cs, coarse->mesh, opt);
+      est.bytes = std::max(est.bytes, ce.bytes);
+      est.seconds += ce.seconds;
+    }
+    if (est.bytes > 0) sum.set_diagnostic("estimated_memory_bytes", est.bytes);
+    if (est.seconds > 0) sum.set_diagnostic("estimated_time_s", est.seconds);
+    const double memory_limit = opt.max_memory_bytes > 0 ? opt.max_memory_bytes : default_memory_limit();
+    if (est.bytes > memory_limit)
+      sum.raise(Status::ResourceLimit,
+                fmt::format("{}: refused before allocating: estimated peak memory {} ({}) exceeds the limit of {} ({}); "
+                            "raise it with --max-memory GB, or use a coarser mesh or fewer modes, loads or samples",
+                            name(), gigabytes(est.bytes), est.basis, gigabytes(memory_limit),
+                            opt.max_memory_bytes > 0 ? "as set" : "80 % of the memory this process may use"));
+    if (est.seconds > opt.max_time_s)
+      sum.raise(Status::ResourceLimit,
+                fmt::format("{}: refused before starting: estimated run time {:.3g} s ({}) exceeds the limit of {:.3g} s; "
+                            "raise it with --max-time S, or use a coarser mesh or fewer modes, loads or samples",
+                            name(), est.seconds, est.basis, opt.max_time_s));
+    if (sum.status == Status::ResourceLimit) {
+      sum.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
+      return result;
+    }
+    Scene light = scene;  // what the error estimate needs: modes and statics
+    light.request.frf.reset();
+    light.request.shapes.reset();
+    auto run = [&](const Scene& sc, const Discretization& m) {
+      Result x;
+      x.summary.mesh = m.spec();
+      do_solve(sc, m, opt, x);
+      return x;
+    };
+    Discretization final_mesh = mesh;
+    std::optional<std::pair<ErrorEstimate, std::vector<std::string>>> verdict;
+    std::vector<std::string> estimate_warnings;
+    double estimate_time = 0;
+    if (coarse && opt.refine_to_tolerance) {
+      // The default mesh: refine until the estimate meets the tolerance (light solves only; the
+      // whole request is then solved once on the mesh kept).
+      const auto tc = clock::now();
+      Result prev = run(light, coarse->mesh);
+      Result cur = run(light, mesh);
+      verdict = judge_discretization(scene, coarse->mesh.spec(), coarse->ratio, coarse->order, cur, prev);
+      for (int step = 0; step < 3 && !verdict->second.empty(); ++step) {
+        const double worst = std::max(std::isnan(verdict->first.frequencies) ? 0.0 : verdict->first.frequencies,
+                                    std::isnan(verdict->first.deflections) ? 0.0 : verdict->first.deflections);
+        const double factor = std::clamp(1.25 * std::pow(worst / scene.request.tolerance, 1.0 / coarse->order), 1.5, 4.0);
+        const std::optional<Discretization> next = finer_mesh(scene, final_mesh, std::isfinite(factor) ? factor : 4.0);
+        if (!next) break;
+        const ResourceEstimate ne = estimate(scene, *next, opt);
+        if (ne.bytes > memory_limit || ne.seconds > opt.max_time_s) {
+          estimate_warnings.push_back(fmt::format(
+              "refinement stopped at mesh {}: the next, {}, is estimated at {} and {:.3g} s, over the limits",
+              final_mesh.spec(), next->spec(), gigabytes(ne.bytes), ne.seconds));
+          break;
+        }
+        const double ratio = static_cast<double>(next->counts[0]) / final_mesh.counts[0];
+        prev = std::move(cur);
+        cur = run(light, *next);
+        verdict = judge_discretization(scene, final_mesh.spec(), ratio, coarse->order, cur, prev);
+        final_mesh = *next;
+      }
+      if (cur.summary.status != Status::Success && cur.summary.status != Status::NotConverged)
+        estimate_warnings.push_back(fmt::format("a solve on mesh {} of the refinement was {}: {}", final_mesh.spec(),
+                                                to_string(cur.summary.status), cur.summary.message));
+      estimate_time = std::chrono::duration<double>(clock::now() - tc).count();
+      if (final_mesh.spec() != mesh.spec())
+        sum.warnings.push_back(fmt::format("default mesh {} refined to {} to meet the tolerance {:.2g}", mesh.spec(),
+                                           final_mesh.spec(), scene.request.tolerance));
+    }
+    sum.mesh = final_mesh.spec();
+    do_solve(scene, final_mesh, opt, result);
+    if (!missing.empty()) {
+      std::string what;
+      for (const auto& m : missing) what += (what.empty() ? "" : ", ") + m;
+      sum.warnings.push_back("not computed: " + what + (cap.reason.empty() ? "" : " (" + cap.reason + ")"));
+    }
+    if (coarse && !verdict && severity(sum.status) < severity(Status::ResourceLimit)) {
+      const auto tc = clock::now();
+      try {
+        const Result cr = run(light, coarse->mesh);
+        verdict = judge_discretization(scene, coarse->mesh.spec(), coarse->ratio, coarse->order, result, cr);
+        if (cr.summary.status != Status::Success)
+          estimate_warnings.push_back(fmt::format("the coarser mesh {} of the error estimate was {}: {}",
+                                                  coarse->mesh.spec(), to_string(cr.summary.status), cr.summary.message));
+      } catch (const std::bad_alloc&) {
+        throw;
+      } catch (const std::exception& e) {
+        sum.error_estimate.note = std::string("no estimate: the coarser mesh failed: ") + e.what();
+        sum.raise(Status::NotConverged, fmt::format("no discretization error estimate: the coarser mesh {} failed ({})",
+                                                    coarse->mesh.spec(), e.what()));
+      }
+      estimate_time += std::chrono::duration<double>(clock::now() - tc).count();
+    } else if (!mesh.counts.empty() && !opt.estimate_error) {
+      sum.error_estimate.note = "not estimated (switched off by the caller)";
+    }
+    if (verdict) {
+      sum.error_estimate = verdict->first;
+      for (const auto& p : verdict->second) sum.raise(Status::NotConverged, p);
+    }
+    for (auto& w : estimate_warnings) sum.warnings.push_back(std::move(w));
+    sum.timings_s.error_estimate = estimate_time;
   } catch (const InputError& e) {
     sum.raise(Status::InvalidInput, e.what());
   } catch (const std::bad_alloc&) {
@@ -242,6 +466,7 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
   if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
   if (result.mode_families.size() != result.frequencies_rad_s.size())
     result.mode_families.resize(result.frequencies_rad_s.size(), ModeFamily::Unknown);
+  if (sum.diagnostic("estimated_memory_bytes") > 0) sum.set_diagnostic("process_peak_resident_bytes", peak_resident_bytes());
   sum.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
   return result;
 }

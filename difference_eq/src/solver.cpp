@@ -96,6 +96,39 @@ std::vector<Discretization> DifferenceEqSolver::stress_meshes(const Scene& s) co
   return out;
 }
 
+std::optional<CoarserMesh> DifferenceEqSolver::coarser_mesh(const Scene& s, const Discretization& mesh,
+                                                             const Options& options) const {
+  if (mesh.counts.size() != 1 || mesh.counts[0] < 4 || mesh.counts[0] % 2) return std::nullopt;
+  const long base = base_mesh(s);
+  const int half = mesh.counts[0] / 2;
+  if (base == 0 || half % base) return std::nullopt;  // loads and probes would leave the nodes
+  // Hermite cubics: eigenvalues converge at h^4 with the consistent mass, h^2 with the lumped one.
+  return CoarserMesh{{{half}}, 2.0, options.mass == MassModel::Consistent ? 4.0 : 2.0};
+}
+
+std::optional<Discretization> DifferenceEqSolver::finer_mesh(const Scene& s, const Discretization& mesh,
+                                                              double factor) const {
+  const long base = base_mesh(s);
+  if (mesh.counts.size() != 1 || base == 0) return std::nullopt;
+  long R = std::lround(std::ceil(mesh.counts[0] * factor));
+  R = base * ((R + 2 * base - 1) / (2 * base)) * 2;  // even, loads and probes on nodes
+  if (R > 1'000'000) return std::nullopt;
+  return Discretization{{static_cast<int>(R)}};
+}
+
+// The closed forms cost O(1) per mode and O(R) per load; the banded FE check O(R) per solve.
+ResourceEstimate DifferenceEqSolver::estimate(const Scene& s, const Discretization& mesh, const Options&) const {
+  ResourceEstimate e;
+  if (mesh.counts.size() != 1) return e;
+  const double R = mesh.counts[0];
+  const double loads = static_cast<double>(s.loads.size()), probes = static_cast<double>(s.request.probes.size());
+  e.bytes = 400.0 * R + 64.0 * loads * probes;
+  e.seconds = 2e-7 * R * (2 + loads) + 1e-7 * loads * probes + 2e-4 * s.request.modes;
+  e.basis = fmt::format("R = {} elements, {} loads, {} probes, {} modes", mesh.counts[0], s.loads.size(),
+                        s.request.probes.size(), s.request.modes);
+  return e;
+}
+
 std::vector<OptionSpec> DifferenceEqSolver::option_specs() const {
   using T = OptionSpec::Type;
   return {{"static_method", T::Choice,

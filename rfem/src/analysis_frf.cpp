@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
+
+#include <new>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -48,7 +50,7 @@ FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorX
       base.emplace_back(j, n + it.row(), s * it.value());
     }
   const std::size_t nborder = base.size();
-  Eigen::SparseLU<CSp, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::UmfPackLU<CSp> lu;
   bool analysed = false;
   Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(n + m);
   rhs.head(n) = f.cast<Cplx>();
@@ -82,6 +84,7 @@ FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorX
     }
     lu.factorize(A);
     out.factor_seconds += seconds_since(t0);
+    if (lu.umfpackFactorizeReturncode() == UMFPACK_ERROR_out_of_memory) throw std::bad_alloc();
     if (lu.info() != Eigen::Success) {
       ++out.skipped;
       continue;
@@ -101,7 +104,7 @@ FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorX
         m > 0 ? " with the constraint border" : "", fallbacks);
   else
     out.method = fmt::format(
-        "direct: sparse LU (Eigen SparseLU, COLAMD) of K(1 + i eta) + i w C - w^2 M{} per frequency, eta = {}",
+        "direct: sparse LU (UMFPACK) of K(1 + i eta) + i w C - w^2 M{} per frequency, eta = {}",
         m > 0 ? " with the constraint border" : "", eta);
   return out;
 }

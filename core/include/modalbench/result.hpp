@@ -78,9 +78,23 @@ void finish_mode_shapes(ModeShapes& shapes);
 /// quantity, including the factorizations and checks it needs.
 struct PhaseTimes {
   double build = 0, modes = 0, statics = 0, frf = 0;
+  /// The coarser mesh solved for the discretization-error estimate (0 where none is made).
+  double error_estimate = 0;
 };
 
+
 inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
+
+/// A meshed result's own estimate of its discretization error: the same request on a coarser mesh
+/// of the same family, Richardson with the family's order. Relative figures; NaN where not made.
+struct ErrorEstimate {
+  double frequencies = kNotMeasured;   ///< max over paired nonzero modes of |f_h - f_H| / (r^p - 1) / f_h
+  double deflections = kNotMeasured;   ///< max over probes of |w_h - w_H| / (r^p - 1) / max |w_h|
+  double tolerance = kNotMeasured;     ///< the scene's request.tolerance it was judged against
+  std::string coarse_mesh;            ///< the mesh it was checked against ("" when none)
+  double ratio = kNotMeasured, order = kNotMeasured;
+  std::string note;                   ///< how it was made, or why none was
+};
 
 struct Summary {
   Status status = Status::Success;
@@ -113,6 +127,9 @@ struct Summary {
   /// Back-end-specific figures, by name (e.g. "iterations", "segment_asymmetry", "series_tail").
   std::vector<std::pair<std::string, double>> diagnostics;
   PhaseTimes timings_s;  ///< mode shapes are charged to `modes`
+  ErrorEstimate error_estimate;
+  /// The mesh actually solved ("-" for none).
+  std::string mesh;
   std::vector<std::string> warnings;
   double total_time_s = 0;
 

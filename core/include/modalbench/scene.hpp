@@ -19,6 +19,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace modalbench {
@@ -75,6 +76,10 @@ struct Material {
 
 /// Beam: length L along x, rectangular section width (y) x height (z).
 /// Plate: a = length (x), b = width (y), thickness h = height.
+/// Largest half-wave counts (m along a, n along b) among the first k modes of a simply supported
+/// a x b plate (ordered by (m/a)^2 + (n/b)^2): what a mesh must resolve for k modes of any plate.
+std::pair<int, int> plate_half_waves(double a, double b, int k);
+
 struct Geometry {
   double length = 0, width = 0, height = 0;
 };
@@ -115,6 +120,10 @@ struct Request {
   std::vector<std::array<double, 2>> probes;  ///< beam: {x, 0}; plate: {x, y}
   std::optional<FrfRequest> frf;
   std::optional<ShapeRequest> shapes;  ///< absent: no shapes are computed (nor paid for)
+  /// Relative accuracy asked of a discretized result: a back-end with a mesh estimates its own
+  /// discretization error (Richardson against a second, coarser mesh) and a result whose
+  /// estimate exceeds this is `not-converged` (frequencies; deflections relative to the largest).
+  double tolerance = 1e-3;
 };
 
 /// A back-end option as written in the scene (`[backend.NAME]` key = value), as text: the

@@ -10,6 +10,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,11 +71,43 @@ class ResolvedOptions {
 /// Run-time options common to all methods. Each field's default is stated here.
 struct Options {
   MassModel mass = MassModel::Consistent;  ///< where a back-end offers both
+  /// Largest peak memory a request may be estimated to need, bytes; 0: 80 % of what this process
+  /// may use (physical memory, `ulimit -v`, `ulimit -d`, whichever is least). A request estimated
+  /// above it is refused before anything is allocated (Status::ResourceLimit).
+  double max_memory_bytes = 0;
+  /// Longest a request may be estimated to run, seconds (refused above it, like memory).
+  double max_time_s = 600;
+  /// Estimate the discretization error of a meshed result from a second, coarser mesh (and judge
+  /// it against the scene's request.tolerance). Off only where the caller runs its own convergence
+  /// study (the comparison's timed runs).
+  bool estimate_error = true;
+  /// The mesh is the back-end's default (no --mesh given): while the error estimate exceeds the
+  /// scene's request.tolerance, refine it (at most 3 times, each within the limits above) and
+  /// report the first mesh that meets it, or the finest tried.
+  bool refine_to_tolerance = false;
   /// Back-end options from the command line (key -> value text), over the scene's [backend.NAME].
   std::vector<std::pair<std::string, std::string>> backend;
   /// Filled by Solver::solve (validated, defaults applied) before the back-end runs.
   ResolvedOptions resolved;
 };
+
+/// What a request is estimated to cost, before anything is allocated.
+struct ResourceEstimate {
+  double bytes = 0;    ///< peak memory of the solve (the scene and the process excluded)
+  double seconds = 0;  ///< wall time on one core of this class of machine
+  std::string basis;   ///< the sizes the estimate rests on, in words
+};
+
+/// A coarser mesh of the same family as a given one, for a result's own discretization-error
+/// estimate: Richardson with the family's order, |f_h - f_H| / (ratio^order - 1).
+struct CoarserMesh {
+  Discretization mesh;
+  double ratio = 2;  ///< H / h
+  double order = 2;  ///< the order at which this family's frequencies converge
+};
+
+/// 80 % of the memory this process may use (physical memory, RLIMIT_AS, RLIMIT_DATA), bytes.
+double default_memory_limit();
 
 /// What a solver can compute for a scene, or why not.
 struct Capability {
@@ -98,9 +131,22 @@ class Solver {
   virtual std::vector<OptionSpec> option_specs() const { return {}; }
   /// The largest meshes worth trying in the stability sweep (default: the finest of the ladder).
   virtual std::vector<Discretization> stress_meshes(const Scene& scene) const { return {mesh_ladder(scene).back()}; }
+  /// Peak memory and time the request (scene, mesh) is estimated to need. May throw InputError
+  /// for a mesh the back-end rejects. Default: nothing worth estimating.
+  virtual ResourceEstimate estimate(const Scene&, const Discretization&, const Options&) const { return {}; }
+  /// The coarser mesh a result on `mesh` is checked against (nullopt: no mesh, the method is exact
+  /// for its model, or no coarser mesh of the family exists).
+  virtual std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization&, const Options&) const {
+    return std::nullopt;
+  }
+  /// A mesh of the same family about `factor` (> 1) times finer in each direction (nullopt: none).
+  virtual std::optional<Discretization> finer_mesh(const Scene&, const Discretization&, double /*factor*/) const {
+    return std::nullopt;
+  }
 
-  /// Validates the scene and the options, times, and fills the summary; then calls the back-end.
-  /// Never throws for numerical trouble or unsupported requests: those come back in
+  /// Validates the scene and the options, estimates the cost (refused above options' limits),
+  /// times, and fills the summary; then calls the back-end, and, for a meshed result, solves the
+  /// coarser mesh to estimate its discretization error (Summary::error_estimate). Never throws for numerical trouble or unsupported requests: those come back in
   /// `summary.status`. Invalid input (bad mesh or option for this back-end, a scene that fails
   /// validation) comes back as Status::InvalidInput with the file, key and reason.
   Result solve(const Scene& scene, const Discretization& mesh, const Options& options) const;

@@ -72,6 +72,13 @@ class DifferenceEqSolver final : public Solver {
   std::vector<Discretization> stress_meshes(const Scene& scene) const override;
   /// static_method, residual_check_max_R (defaults from the Config the solver was built with).
   std::vector<OptionSpec> option_specs() const override;
+  /// The coarser mesh of the self-check (halved counts, order 2; order 4 with consistent mass, R/2 only when loads and probes stay on nodes).
+  std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
+                                          const Options& options) const override;
+  /// The default mesh refined towards the tolerance (counts times factor).
+  std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
+  /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
+  ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,

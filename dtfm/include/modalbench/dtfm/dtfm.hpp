@@ -59,6 +59,13 @@ class DtfmSolver final : public Solver {
   /// layers, kirchhoff_penalty (defaults from the ModelOptions the solver was built with), rel_tol,
   /// im_h, re_h, family_threshold (SolveControls).
   std::vector<OptionSpec> option_specs() const override;
+  /// The coarser mesh of the self-check (halved counts, order 2; one-prism beams are exact for their model: none).
+  std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
+                                          const Options& options) const override;
+  /// The default mesh refined towards the tolerance (counts times factor).
+  std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
+  /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
+  ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,

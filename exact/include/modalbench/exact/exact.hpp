@@ -26,6 +26,8 @@ class ExactSolver final : public Solver {
   Discretization default_mesh(const Scene&) const override { return {}; }
   /// navier_static_terms (2000), navier_frf_terms (300): truncation of the Navier double series.
   std::vector<OptionSpec> option_specs() const override;
+  /// Time and memory of a request, from the number of modes, loads and FRF samples (see the .cpp).
+  ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
  protected:
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,

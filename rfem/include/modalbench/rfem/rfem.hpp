@@ -56,6 +56,13 @@ class RfemSolver final : public Solver {
   /// eigen, dense_limit, tolerance, sturm_check, seed, frf_modes, beam_rigid_shear,
   /// plate_rigid_shear, plate_bending_correction (defaults and ranges in rfem.cpp).
   std::vector<OptionSpec> option_specs() const override;
+  /// The coarser mesh of the self-check (halved counts, order 2).
+  std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
+                                          const Options& options) const override;
+  /// The default mesh refined towards the tolerance (counts times factor).
+  std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
+  /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
+  ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
   /// The model for a scene and mesh (`options`: the builder options; null = defaults). Throws
   /// InputError (key "--mesh") for a bad mesh.
