@@ -209,10 +209,13 @@ double default_memory_limit() {
     double pages = 0;
     if (statm >> pages) mapped = pages * static_cast<double>(sysconf(_SC_PAGE_SIZE));
   }
+  // Under an address-space limit, OpenBLAS's per-thread work buffers (128 MiB each, two threads)
+  // are mapped on first use and count too.
+  const double blas_buffers = 2.0 * 134225920.0;
   for (int which : {RLIMIT_AS, RLIMIT_DATA}) {
     rlimit rl{};
     if (getrlimit(which, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
-      avail = std::min(avail, std::max(0.0, static_cast<double>(rl.rlim_cur) - mapped));
+      avail = std::min(avail, std::max(0.0, static_cast<double>(rl.rlim_cur) - mapped - blas_buffers));
   }
   return 0.8 * avail;
 }

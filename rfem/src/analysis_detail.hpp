@@ -33,6 +33,11 @@ class ConstraintProjector {
   Eigen::SimplicialLDLT<SpMat> ldlt_;
 };
 
+/// Makes the BLAS (OpenBLAS) allocate this thread's work buffer now, before the model takes the
+/// memory: OpenBLAS reserves it on a thread's first level-3 call and, when that allocation fails,
+/// retries forever instead of reporting it. Once per thread; the buffer is kept for later calls.
+void reserve_blas_workspace();
+
 struct Flexible {
   Eigen::VectorXd lambda;
   Eigen::MatrixXd Z;

@@ -210,7 +210,7 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
     // they overlap the Lanczos iteration (read-only access to sys on both threads).
     std::future<void> sturm_analysis;
     if (opt.sturm_check)
-      sturm_analysis = std::async(std::launch::async, [&sturm, &sys] { sturm.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups); });
+      sturm_analysis = std::async(std::launch::async, [&sturm, &sys] { detail::reserve_blas_workspace(); sturm.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups); });
     long nev = kf;
     for (int attempt = 0; attempt < 3; ++attempt) {
       const long ncv = std::min<long>(n_eff, std::max<long>(2 * nev + 1, nev + 16));

@@ -1,5 +1,7 @@
 #include "modalbench/rfem/factor.hpp"
 
+#include "analysis_detail.hpp"
+
 #include <amd.h>
 
 #include <Eigen/CholmodSupport>
@@ -9,7 +11,23 @@
 #include <stdexcept>
 #include <vector>
 
+extern "C" void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a,
+                       const int* lda, double* x, const int* incx);
+
 namespace modalbench::rfem {
+
+namespace detail {
+void reserve_blas_workspace() {
+  static thread_local bool done = false;
+  if (done) return;
+  done = true;
+  // A triangular solve takes the buffer whatever its size (level 3 has a buffer-free small path).
+  const int n = 1, inc = 1;
+  const double a = 1;
+  double x = 1;
+  dtrsv_("U", "N", "N", &n, &a, &n, &x, &inc);
+}
+}  // namespace detail
 
 namespace {
 using Triplet = Eigen::Triplet<double>;

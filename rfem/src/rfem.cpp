@@ -9,6 +9,7 @@
 #include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/builders.hpp"
 #include "modalbench/rfem/system.hpp"
+#include "analysis_detail.hpp"
 
 namespace modalbench::rfem {
 
@@ -106,11 +107,13 @@ std::vector<Discretization> RfemSolver::stress_meshes(const Scene& s) const {
 }
 
 std::optional<CoarserMesh> RfemSolver::coarser_mesh(const Scene& s, const Discretization& mesh, const Options&) const {
-  if (s.is_beam() && mesh.counts.size() == 1 && mesh.counts[0] >= 4)
+  if (s.is_beam() && mesh.counts.size() == 1 && mesh.counts[0] >= 2)
     return CoarserMesh{{{mesh.counts[0] / 2}}, static_cast<double>(mesh.counts[0]) / (mesh.counts[0] / 2), 2.0};
-  if (s.is_plate() && mesh.counts.size() == 2 && mesh.counts[0] >= 4 && mesh.counts[1] >= 4) {
-    const int nx = mesh.counts[0] / 2, ny = mesh.counts[1] / 2;
-    return CoarserMesh{{{nx, ny}}, std::min(static_cast<double>(mesh.counts[0]) / nx, static_cast<double>(mesh.counts[1]) / ny), 2.0};
+  // Plates: halve each side that keeps at least 2 fragments (a side too coarse to halve stays).
+  if (s.is_plate() && mesh.counts.size() == 2 && std::max(mesh.counts[0], mesh.counts[1]) >= 4) {
+    const int nx = mesh.counts[0] >= 4 ? mesh.counts[0] / 2 : mesh.counts[0];
+    const int ny = mesh.counts[1] >= 4 ? mesh.counts[1] / 2 : mesh.counts[1];
+    return CoarserMesh{{{nx, ny}}, std::max(static_cast<double>(mesh.counts[0]) / nx, static_cast<double>(mesh.counts[1]) / ny), 2.0};
   }
   return std::nullopt;
 }
@@ -224,6 +227,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
   auto& sum = r.summary;
   const ResolvedOptions& opt = options.resolved;
   auto t0 = Clock::now();
+  detail::reserve_blas_workspace();
   const Model model = build(s, mesh, &opt);
   const System sys = assemble(model);
   sum.timings_s.build = since(t0);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "modalbench/difference_eq/difference_eq.hpp"
+#include "solve_options.hpp"
 #include "modalbench/exact/exact.hpp"
 #include "modalbench/scene.hpp"
 
@@ -63,7 +64,7 @@ BOOST_AUTO_TEST_CASE(identity_and_supports) {
   const Capability cp = s.supports(plate);
   BOOST_TEST(!cp.any());
   BOOST_TEST(cp.reason.find("plates are not supported") != std::string::npos);
-  const Result rp = s.solve(plate, Discretization{{8}}, Options{});
+  const Result rp = s.solve(plate, Discretization{{8}}, testing::own_error_study());
   BOOST_TEST(rp.summary.status == Status::Unsupported);
   const Capability cb = s.supports(load_scene(kDir + "/lasecka_elastic_beam.toml"));
   BOOST_TEST(cb.modes);
@@ -79,9 +80,9 @@ BOOST_AUTO_TEST_CASE(lasecka_scene_against_exact) {
   const Discretization mesh = s.default_mesh(sc);
   BOOST_REQUIRE(mesh.counts.size() == 1u);
   BOOST_TEST(mesh.counts[0] % 4 == 0);
-  const Result r = s.solve(sc, mesh, Options{});
+  const Result r = s.solve(sc, mesh, testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
-  const Result ex = exact::ExactSolver{}.solve(sc, Discretization{}, Options{});
+  const Result ex = exact::ExactSolver{}.solve(sc, Discretization{}, testing::own_error_study());
   BOOST_REQUIRE(ex.ok());
   BOOST_REQUIRE(r.deflections.size() == ex.deflections.size());
   double wmax = 0, tmax = 0;
@@ -103,7 +104,7 @@ BOOST_AUTO_TEST_CASE(lasecka_scene_against_exact) {
   BOOST_TEST(r.summary.method.find("Euler-Bernoulli") != std::string::npos);
   BOOST_TEST(r.summary.timings_s.modes > 0);
   // Lumped mass runs too, and differs (order h^2).
-  Options lumped;
+  Options lumped = testing::own_error_study();
   lumped.mass = MassModel::Lumped;
   const Result rl = s.solve(sc, mesh, lumped);
   BOOST_REQUIRE(rl.ok());
@@ -119,7 +120,7 @@ BOOST_AUTO_TEST_CASE(mesh_ladder_puts_loads_on_nodes) {
   for (const auto& m : ladder) {
     BOOST_TEST(m.counts[0] % 4 == 0);
     BOOST_TEST(m.counts[0] <= 4096);
-    const Result r = s.solve(sc, m, Options{});
+    const Result r = s.solve(sc, m, testing::own_error_study());
     BOOST_TEST(r.summary.status == Status::Success, m.spec() << ": " << r.summary.message);
   }
 }
@@ -127,15 +128,15 @@ BOOST_AUTO_TEST_CASE(mesh_ladder_puts_loads_on_nodes) {
 BOOST_AUTO_TEST_CASE(bad_mesh_and_loads_off_nodes) {
   const DifferenceEqSolver s;
   const Scene sc = load_scene(kDir + "/lasecka_elastic_beam.toml");
-  const Result r0 = s.solve(sc, Discretization{{0}}, Options{});
+  const Result r0 = s.solve(sc, Discretization{{0}}, testing::own_error_study());
   BOOST_TEST(r0.summary.status == Status::InvalidInput);
   BOOST_TEST(mentions(r0, "--mesh"));
   BOOST_CHECK_THROW(Discretization::parse("0"), InputError);
-  const Result r2 = s.solve(sc, Discretization{{4, 4}}, Options{});
+  const Result r2 = s.solve(sc, Discretization{{4, 4}}, testing::own_error_study());
   BOOST_TEST(r2.summary.status == Status::InvalidInput);
   BOOST_TEST(mentions(r2, "one integer"));
   // x = 1, 2, 3 of L = 4 are not nodes of R = 6.
-  const Result r6 = s.solve(sc, Discretization{{6}}, Options{});
+  const Result r6 = s.solve(sc, Discretization{{6}}, testing::own_error_study());
   BOOST_TEST(r6.summary.status == Status::InvalidInput);
   BOOST_TEST(mentions(r6, "loads[0].x"));
   BOOST_TEST(mentions(r6, "not at a node of mesh R=6"));
@@ -147,7 +148,7 @@ BOOST_AUTO_TEST_CASE(bad_mesh_and_loads_off_nodes) {
 BOOST_AUTO_TEST_CASE(mechanism_refused_rigid_modes_reported) {
   const DifferenceEqSolver s;
   const Scene sc = beam_scene("x0 = \"free\"\nxL = \"free\"", "[[loads]]\nx = 1.0\nFz = -100.0");
-  const Result r = s.solve(sc, Discretization{{16}}, Options{});
+  const Result r = s.solve(sc, Discretization{{16}}, testing::own_error_study());
   BOOST_TEST(r.summary.status == Status::InvalidInput);
   BOOST_TEST(mentions(r, "supports"));
   BOOST_TEST(mentions(r, "mechanism"));
@@ -166,11 +167,11 @@ BOOST_AUTO_TEST_CASE(near_mechanism_warns) {
   const Scene sc = beam_scene("x0 = { translational = 1.6667, rotational = 6.6667 }\n"
                               "xL = { translational = 1.6667, rotational = 6.6667 }",
                               "[[loads]]\nx = 0.5\nFz = -100.0");
-  const Result r = s.solve(sc, s.default_mesh(sc), Options{});
+  const Result r = s.solve(sc, s.default_mesh(sc), testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   BOOST_TEST(has(r.summary.warnings, "near-mechanism"));
   BOOST_TEST(r.summary.diagnostic("support_condition") > 1e6);
-  const Result ex = exact::ExactSolver{}.solve(sc, Discretization{}, Options{});
+  const Result ex = exact::ExactSolver{}.solve(sc, Discretization{}, testing::own_error_study());
   BOOST_REQUIRE(ex.ok());
   BOOST_TEST(std::abs(r.deflections[1].w / ex.deflections[1].w - 1.0) < 1e-6);  // large, ~ 1/K
   BOOST_TEST(std::abs(r.deflections[1].w) > 1.0);
@@ -181,7 +182,7 @@ BOOST_AUTO_TEST_CASE(near_mechanism_warns) {
 BOOST_AUTO_TEST_CASE(timoshenko_scene_says_euler_bernoulli) {
   const DifferenceEqSolver s;
   const Scene sc = load_scene(kDir + "/paper_fixed_beam.toml");
-  const Result r = s.solve(sc, s.default_mesh(sc), Options{});
+  const Result r = s.solve(sc, s.default_mesh(sc), testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   BOOST_TEST(has(r.summary.warnings, "Euler-Bernoulli model"));
   BOOST_TEST(has(r.summary.warnings, "not computed: FRF"));
@@ -191,7 +192,7 @@ BOOST_AUTO_TEST_CASE(timoshenko_scene_says_euler_bernoulli) {
   Scene eb = sc;
   eb.theory = Theory::EulerBernoulli;
   eb.request.frf.reset();
-  const Result ex = exact::ExactSolver{}.solve(eb, Discretization{}, Options{});
+  const Result ex = exact::ExactSolver{}.solve(eb, Discretization{}, testing::own_error_study());
   BOOST_REQUIRE(ex.ok());
   for (std::size_t i = 0; i < 3; ++i) BOOST_TEST(std::abs(r.frequencies_rad_s[i] / ex.frequencies_rad_s[i] - 1.0) < 1e-5);
   for (std::size_t i = 0; i < r.deflections.size(); ++i)
@@ -202,7 +203,7 @@ BOOST_AUTO_TEST_CASE(planar_physics_solves_bending_only_and_says_so) {
   const DifferenceEqSolver s;
   const Scene sc = beam_scene("x0 = \"clamped\"\nxL = \"free\"", "[[loads]]\nx = 2.0\nFz = -100.0\nFx = 50.0", 4,
                               "[0.5, 1.0, 1.5]", "planar");
-  const Result r = s.solve(sc, Discretization{{8}}, Options{});
+  const Result r = s.solve(sc, Discretization{{8}}, testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   BOOST_TEST(has(r.summary.warnings, "only bending in x-z"));
   BOOST_TEST(has(r.summary.warnings, "other than Fz and My are ignored"));
@@ -214,10 +215,10 @@ BOOST_AUTO_TEST_CASE(probes_between_nodes) {
   const DifferenceEqSolver s;
   const Scene sc = beam_scene("x0 = \"clamped\"\nxL = \"pinned\"", "[[loads]]\nx = 1.0\nFz = -100.0\nMy = 30.0", 0,
                               "[0.3, 0.77, 1.0, 1.9]");
-  const Result r = s.solve(sc, Discretization{{4}}, Options{});
+  const Result r = s.solve(sc, Discretization{{4}}, testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   BOOST_TEST(has(r.summary.warnings, "between nodes"));
-  const Result ex = exact::ExactSolver{}.solve(sc, Discretization{}, Options{});
+  const Result ex = exact::ExactSolver{}.solve(sc, Discretization{}, testing::own_error_study());
   BOOST_REQUIRE(ex.ok());
   for (std::size_t i = 0; i < r.deflections.size(); ++i) {
     BOOST_TEST(std::abs(r.deflections[i].w - ex.deflections[i].w) <= 1e-10 * std::abs(ex.deflections[i].w));
@@ -231,15 +232,15 @@ BOOST_AUTO_TEST_CASE(eigenfunction_route_selectable) {
   c.static_method = difference_eq::StaticMethod::EigenfunctionExpansion;
   const DifferenceEqSolver se(c), sp;
   const Scene sc = load_scene(kDir + "/lasecka_elastic_beam.toml");
-  const Result a = se.solve(sc, Discretization{{32}}, Options{});
-  const Result b = sp.solve(sc, Discretization{{32}}, Options{});
+  const Result a = se.solve(sc, Discretization{{32}}, testing::own_error_study());
+  const Result b = sp.solve(sc, Discretization{{32}}, testing::own_error_study());
   BOOST_REQUIRE(a.ok());
   BOOST_REQUIRE(b.ok());
   BOOST_TEST(a.summary.method.find("eigenfunction expansion") != std::string::npos);
   // The same choice from the scene's [backend.difference_eq] table.
   Scene chosen = sc;
   chosen.backend_options["difference_eq"] = {{"static_method", "eigenfunction-expansion"}};
-  const Result c2 = sp.solve(chosen, Discretization{{32}}, Options{});
+  const Result c2 = sp.solve(chosen, Discretization{{32}}, testing::own_error_study());
   BOOST_REQUIRE(c2.ok());
   BOOST_TEST(c2.summary.method.find("eigenfunction expansion") != std::string::npos);
   BOOST_TEST(c2.summary.method_requested.find("static_method=eigenfunction-expansion") != std::string::npos);

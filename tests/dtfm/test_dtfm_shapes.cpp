@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "modalbench/dtfm/dtfm.hpp"
+#include "solve_options.hpp"
 #include "modalbench/exact/exact.hpp"
 
 using namespace modalbench;
@@ -55,7 +56,7 @@ double mac(const ModeShapes& a, std::size_t ka, const ModeShapes& b, std::size_t
 // (unit) generalized masses and the effective masses agree with the exact back-end's.
 BOOST_AUTO_TEST_CASE(one_prism_matches_exact_timoshenko_shapes) {
   const Scene s = modes_only(scene("paper_fixed_beam.toml"), 6, ShapeRequest{41, 1});
-  const Result d = DtfmSolver().solve(s, Discretization::parse("1x1"), {});
+  const Result d = DtfmSolver().solve(s, Discretization::parse("1x1"), testing::own_error_study());
   const Result e = exact::ExactSolver().solve(s, {}, {});
   BOOST_TEST_REQUIRE(d.ok(), d.summary.message);
   BOOST_TEST_REQUIRE(e.ok(), e.summary.message);
@@ -100,7 +101,7 @@ BOOST_AUTO_TEST_CASE(cantilever_effective_masses) {
   Scene s = modes_only(scene("paper_fixed_beam.toml"), 64, ShapeRequest{41, 1});
   s.theory = Theory::EulerBernoulli;
   s.xL = Support::named("free");
-  const Result r = DtfmSolver().solve(s, Discretization::parse("1x1"), {});
+  const Result r = DtfmSolver().solve(s, Discretization::parse("1x1"), testing::own_error_study());
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   const ModeShapes& ms = r.mode_shapes;
   BOOST_REQUIRE_EQUAL(ms.values.size(), 64u);
@@ -121,7 +122,7 @@ BOOST_AUTO_TEST_CASE(cantilever_effective_masses) {
 BOOST_AUTO_TEST_CASE(plate_shapes_match_navier) {
   const Scene s = modes_only(scene("paper_ss_plate.toml"), 8,
                              ShapeRequest{ShapeRequest::kPlateDefaultNx, ShapeRequest::kPlateDefaultNy});
-  const Result d = DtfmSolver().solve(s, Discretization::parse("10"), {});
+  const Result d = DtfmSolver().solve(s, Discretization::parse("10"), testing::own_error_study());
   const Result e = exact::ExactSolver().solve(s, {}, {});
   BOOST_TEST_REQUIRE(d.ok(), d.summary.message);
   BOOST_TEST_REQUIRE(e.ok(), e.summary.message);
@@ -141,7 +142,7 @@ BOOST_AUTO_TEST_CASE(plate_shapes_match_navier) {
 BOOST_AUTO_TEST_CASE(square_section_repeated_roots) {
   Scene s = modes_only(scene("dtfm_spatial_beam.toml"), 12, ShapeRequest{41, 1});
   s.geometry.width = s.geometry.height;
-  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), {});
+  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), testing::own_error_study());
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   const ModeShapes& ms = r.mode_shapes;
   BOOST_REQUIRE_EQUAL(ms.values.size(), r.frequencies_rad_s.size());
@@ -170,7 +171,7 @@ BOOST_AUTO_TEST_CASE(square_section_repeated_roots) {
 BOOST_AUTO_TEST_CASE(rigid_modes_carry_the_whole_mass) {
   Scene s = modes_only(scene("dtfm_spatial_beam.toml"), 6, ShapeRequest{41, 1});
   s.x0 = s.xL = Support::named("free");
-  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), {});
+  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), testing::own_error_study());
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   const ModeShapes& ms = r.mode_shapes;
   BOOST_REQUIRE_EQUAL(ms.values.size(), 6u);
@@ -187,7 +188,7 @@ BOOST_AUTO_TEST_CASE(rigid_modes_carry_the_whole_mass) {
 BOOST_AUTO_TEST_CASE(no_shapes_unless_requested) {
   Scene s = scene("paper_fixed_beam.toml");
   BOOST_TEST(!s.request.shapes.has_value());
-  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), {});
+  const Result r = DtfmSolver().solve(s, Discretization::parse("2x2"), testing::own_error_study());
   BOOST_TEST(r.ok());
   BOOST_TEST(r.frequencies_rad_s.size() == 6u);
   BOOST_TEST(r.mode_shapes.empty());

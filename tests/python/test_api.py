@@ -17,6 +17,9 @@ TIMING_KEYS = {"timing_s"}
 
 def _strip(doc):
     doc = {k: v for k, v in doc.items() if k not in TIMING_KEYS and k != "scene_file"}
+    # The process's peak memory is measured, like the timings: a Python process is not the CLI's.
+    if "diagnostics" in doc:
+        doc["diagnostics"] = {k: v for k, v in doc["diagnostics"].items() if k != "process_peak_resident_bytes"}
     return doc
 
 

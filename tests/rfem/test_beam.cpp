@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "modalbench/rfem/rfem.hpp"
+#include "solve_options.hpp"
 #include "rfem_test_helpers.hpp"
 
 using namespace modalbench;
@@ -239,7 +240,7 @@ BOOST_AUTO_TEST_CASE(elastic_supports_converge_to_exact_line) {
   std::vector<double> err;
   RfemSolver solver;
   for (int n : kLadder) {
-    const Result r = solver.solve(s, Discretization{{n}}, Options{});
+    const Result r = solver.solve(s, Discretization{{n}}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     double e = 0;
     for (std::size_t i = 0; i < xs.size(); ++i) e = std::max(e, std::abs(r.deflections[i].w - ex[i].w));
@@ -266,7 +267,7 @@ BOOST_AUTO_TEST_CASE(timoshenko_cantilever_tip_load) {
   RfemSolver solver;
   std::vector<double> err;
   for (int n : kLadder) {
-    const Result r = solver.solve(s, Discretization{{n}}, Options{});
+    const Result r = solver.solve(s, Discretization{{n}}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     err.push_back(std::max(rel(r.deflections[0].w, ex[0].w), rel(r.deflections[1].w, ex[1].w)));
     BOOST_TEST(rel(r.deflections[1].theta_y, ex[1].theta) < 1e-9);  // tip rotation: exact at the nodes
@@ -283,7 +284,7 @@ BOOST_AUTO_TEST_CASE(free_beam_statics_is_a_mechanism_named) {
   p.Fz = 1;
   s.loads = {p};
   s.request.probes = {{0.5, 0}};
-  const Result r = RfemSolver().solve(s, Discretization{{8}}, Options{});
+  const Result r = RfemSolver().solve(s, Discretization{{8}}, testing::own_error_study());
   BOOST_TEST((r.summary.status == Status::InvalidInput));
   BOOST_TEST_MESSAGE(r.summary.message);
   BOOST_TEST(r.summary.message.find("mechanism") != std::string::npos);
@@ -311,7 +312,7 @@ void check_off_node(Theory theory) {
   m.My = 300.0;
   s.loads = {f, m};
   s.request.probes = {{0.1, 0}, {0.37, 0}, {0.63, 0}, {0.9, 0}};
-  const Result ex = exact::ExactSolver().solve(s, {}, Options{});
+  const Result ex = exact::ExactSolver().solve(s, {}, testing::own_error_study());
   BOOST_REQUIRE(ex.ok());
   double wmax = 0, tmax = 0;
   for (const auto& d : ex.deflections) {
@@ -320,7 +321,7 @@ void check_off_node(Theory theory) {
   }
   std::vector<double> counts, errors;
   for (int n : {16, 32, 64, 128, 256, 512}) {
-    const Result r = RfemSolver().solve(s, Discretization{{n}}, Options{});
+    const Result r = RfemSolver().solve(s, Discretization{{n}}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     double e = 0;
     for (std::size_t i = 0; i < ex.deflections.size(); ++i)
@@ -352,9 +353,9 @@ BOOST_AUTO_TEST_CASE(paper_beam_off_node_reproducer) {
   s.request.probes = {{0.4, 0}, {0.1, 0}};
   s.request.frf.reset();
   s.request.modes = 0;
-  const Result ex = exact::ExactSolver().solve(s, {}, Options{});
+  const Result ex = exact::ExactSolver().solve(s, {}, testing::own_error_study());
   const RfemSolver rf;
-  const Result r = rf.solve(s, rf.default_mesh(s), Options{});
+  const Result r = rf.solve(s, rf.default_mesh(s), testing::own_error_study());
   BOOST_REQUIRE(r.ok());
   for (std::size_t i = 0; i < 2; ++i) BOOST_TEST(rel(r.deflections[i].w, ex.deflections[i].w) < 5e-4);
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "modalbench/rfem/rfem.hpp"
+#include "solve_options.hpp"
 #include "rfem_test_helpers.hpp"
 
 using namespace modalbench;
@@ -271,7 +272,7 @@ BOOST_AUTO_TEST_CASE(ss_plate_point_load_converges_to_navier_series) {
     Scene statics = s;
     statics.request.modes = 0;
     statics.request.frf.reset();
-    const Result r = RfemSolver().solve(statics, Discretization{{g.nx, g.ny}}, Options{});
+    const Result r = RfemSolver().solve(statics, Discretization{{g.nx, g.ny}}, testing::own_error_study());
     BOOST_REQUIRE(r.deflections.size() == 2u);
     BOOST_TEST(r.summary.max_backward_error < 1e-12);
     err.push_back(r.deflections[1].w / ref - 1);
@@ -294,7 +295,7 @@ BOOST_AUTO_TEST_CASE(off_node_load_and_probes_converge_at_second_order) {
   f.Fz = -1000.0;
   s.loads = {f};
   s.request.probes = {{0.37, 0.23}, {0.52, 0.31}, {0.81, 0.44}};
-  const Result ex = exact::ExactSolver().solve(s, {}, Options{});
+  const Result ex = exact::ExactSolver().solve(s, {}, testing::own_error_study());
   BOOST_REQUIRE(ex.deflections.size() == 3u);
   double wmax = 0, tmax = 0;
   for (const auto& d : ex.deflections) {
@@ -303,7 +304,7 @@ BOOST_AUTO_TEST_CASE(off_node_load_and_probes_converge_at_second_order) {
   }
   std::vector<double> counts, errors;
   for (Grid g : std::vector<Grid>{{10, 6}, {20, 12}, {40, 24}, {80, 48}}) {
-    const Result r = RfemSolver().solve(s, Discretization{{g.nx, g.ny}}, Options{});
+    const Result r = RfemSolver().solve(s, Discretization{{g.nx, g.ny}}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     double e = 0;
     for (std::size_t i = 0; i < 3; ++i) {

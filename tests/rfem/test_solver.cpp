@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "modalbench/rfem/rfem.hpp"
+#include "solve_options.hpp"
 #include "rfem_test_helpers.hpp"
 
 using namespace modalbench;
@@ -53,7 +54,7 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
   const Scene plate = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
   for (const auto& [sc, spec] : std::vector<std::pair<Scene, std::string>>{
            {beam, "64x2"}, {beam, "-"}, {plate, "20"}, {plate, "1x5"}, {plate, "10x6x2"}}) {
-    const Result r = s.solve(sc, Discretization::parse(spec), Options{});
+    const Result r = s.solve(sc, Discretization::parse(spec), testing::own_error_study());
     BOOST_TEST_MESSAGE(spec << ": " << r.summary.message);
     BOOST_TEST((r.summary.status == Status::InvalidInput));
     BOOST_TEST(r.summary.message.find("--mesh") != std::string::npos);
@@ -64,14 +65,14 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
   cc.theory = Theory::EulerBernoulli;
   cc.x0 = Support::named("clamped");
   cc.xL = Support::named("clamped");
-  const Result r = s.solve(cc, Discretization{{1}}, Options{});
+  const Result r = s.solve(cc, Discretization{{1}}, testing::own_error_study());
   BOOST_TEST((r.summary.status == Status::InvalidInput));
 }
 
 BOOST_AUTO_TEST_CASE(builtin_scenes_solve_on_the_default_mesh) {
   const RfemSolver s;
   for (const Scene& sc : builtin_scenes()) {
-    const Result r = s.solve(sc, s.default_mesh(sc), Options{});
+    const Result r = s.solve(sc, s.default_mesh(sc), testing::as_without_mesh());
     BOOST_TEST_MESSAGE(sc.name << " [" << s.default_mesh(sc).spec() << "]: " << to_string(r.summary.status) << " in "
                                << r.summary.total_time_s << " s; " << r.summary.method);
     BOOST_TEST(r.ok());
@@ -94,7 +95,7 @@ BOOST_AUTO_TEST_CASE(default_mesh_agrees_with_exact_solver) {
   const RfemSolver rf;
   const exact::ExactSolver ex;
   for (const Scene& sc : builtin_scenes()) {
-    const Result a = rf.solve(sc, rf.default_mesh(sc), Options{}), b = ex.solve(sc, {}, Options{});
+    const Result a = rf.solve(sc, rf.default_mesh(sc), testing::own_error_study()), b = ex.solve(sc, {}, testing::own_error_study());
     if (!b.ok()) continue;
     const std::size_t k = std::min(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
     for (std::size_t i = 0; i < k; ++i) BOOST_TEST(rel(a.frequencies_rad_s[i], b.frequencies_rad_s[i]) < 5e-2);
@@ -105,10 +106,10 @@ BOOST_AUTO_TEST_CASE(default_mesh_agrees_with_exact_solver) {
 
 BOOST_AUTO_TEST_CASE(modal_frf_option) {
   const Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
-  Options o;
+  Options o = testing::own_error_study();
   o.backend = {{"frf_modes", "40"}};
   const RfemSolver s;
-  const Result modal = s.solve(sc, Discretization{{64}}, o), direct = s.solve(sc, Discretization{{64}}, Options{});
+  const Result modal = s.solve(sc, Discretization{{64}}, o), direct = s.solve(sc, Discretization{{64}}, testing::own_error_study());
   BOOST_REQUIRE(modal.ok());
   BOOST_TEST(modal.summary.method.find("modal superposition over 40 modes") != std::string::npos);
   BOOST_TEST(static_cast<int>(modal.frequencies_rad_s.size()) == sc.request.modes);  // still the requested 6
@@ -125,8 +126,9 @@ BOOST_AUTO_TEST_CASE(complete_spectrum_frf_equals_per_frequency_solves) {
     Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + file);
     sc.material.loss_factor = 0.01;
     const RfemSolver s;
-    const Discretization mesh = s.default_mesh(sc);
-    const Result r = s.solve(sc, mesh, Options{});
+    // Small enough (<= 600 free coordinates) for the complete decomposition to be chosen.
+    const Discretization mesh = sc.is_beam() ? Discretization{{128}} : Discretization{{16, 10}};
+    const Result r = s.solve(sc, mesh, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     BOOST_TEST(r.summary.method.find("complete spectral decomposition") != std::string::npos);
     const Model m = RfemSolver::build(sc, mesh);
@@ -153,7 +155,7 @@ BOOST_AUTO_TEST_CASE(free_plate_statics_is_a_mechanism) {
   Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
   sc.x0 = sc.xL = sc.y0 = sc.yB = Support::named("free");
   sc.request.frf.reset();
-  const Result r = RfemSolver().solve(sc, Discretization{{10, 6}}, Options{});
+  const Result r = RfemSolver().solve(sc, Discretization{{10, 6}}, testing::own_error_study());
   BOOST_TEST((r.summary.status == Status::InvalidInput));
   BOOST_TEST(r.summary.message.find("mechanism") != std::string::npos);
   BOOST_TEST(r.frequencies_rad_s.size() == 8u);  // the modes are still computed ...
@@ -187,12 +189,12 @@ xL = { translational = 1.6666666666666667e-4, rotational = 1.6666666666666667e-4
 modes = 6
 )",
                         "near-mechanism");
-  const Result r = RfemSolver().solve(s, Discretization::parse("128"), Options{});
+  const Result r = RfemSolver().solve(s, Discretization::parse("128"), testing::own_error_study());
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   BOOST_TEST(r.summary.max_backward_error <= 1e-10);
   BOOST_REQUIRE(r.summary.fallbacks.size() == 1u);
   BOOST_TEST(r.summary.fallbacks[0].find("Lanczos") != std::string::npos, r.summary.fallbacks[0]);
-  const Result ex = exact::ExactSolver().solve(s, {}, Options{});
+  const Result ex = exact::ExactSolver().solve(s, {}, testing::own_error_study());
   BOOST_TEST_REQUIRE(ex.ok(), ex.summary.message);
   for (std::size_t i = 0; i < 6; ++i)
     BOOST_TEST(std::abs(r.frequencies_rad_s[i] / ex.frequencies_rad_s[i] - 1) < 2e-3, "mode " << i + 1);

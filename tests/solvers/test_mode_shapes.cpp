@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "modalbench/harness/comparison.hpp"
+#include "solve_options.hpp"
 #include "modalbench/harness/vtk.hpp"
 #include "modalbench/registry.hpp"
 #include "modalbench/rfem/builders.hpp"
@@ -66,7 +67,7 @@ double max_abs(const std::vector<double>& v) {
 // The exact simply supported Euler-Bernoulli beam: w_k = sqrt(2 / (rho A L)) sin(k pi x / L).
 BOOST_AUTO_TEST_CASE(exact_shapes_are_the_closed_form) {
   const Scene s = beam(Theory::EulerBernoulli, "pinned", "pinned", 5, 21);
-  const Result r = make_default_registry().get("exact").solve(s, {}, Options{});
+  const Result r = make_default_registry().get("exact").solve(s, {}, testing::own_error_study());
   BOOST_REQUIRE(r.ok());
   const auto& ms = r.mode_shapes;
   BOOST_REQUIRE(ms.values.size() == 5u);
@@ -88,7 +89,7 @@ BOOST_AUTO_TEST_CASE(exact_shapes_are_the_closed_form) {
 BOOST_AUTO_TEST_CASE(exact_shapes_satisfy_the_boundary_conditions) {
   for (Theory t : {Theory::Timoshenko, Theory::EulerBernoulli}) {
     const Scene s = beam(t, "clamped", "pinned", 6, 31);
-    const Result r = make_default_registry().get("exact").solve(s, {}, Options{});
+    const Result r = make_default_registry().get("exact").solve(s, {}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     for (std::size_t k = 0; k < 6; ++k) {
       const auto& w = comp(r.mode_shapes, k, 2);
@@ -107,7 +108,7 @@ BOOST_AUTO_TEST_CASE(discrete_shapes_are_orthonormal_in_their_own_mass) {
   const Scene s = beam(Theory::EulerBernoulli, "clamped", "free", 8, n + 1);
   const Registry reg = make_default_registry();
   {
-    const Result r = reg.get("rfem").solve(s, Discretization{{n}}, Options{});
+    const Result r = reg.get("rfem").solve(s, Discretization{{n}}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     const rfem::Model m = rfem::build_beam(s, n);
     for (std::size_t i = 0; i < 8; ++i)
@@ -121,7 +122,7 @@ BOOST_AUTO_TEST_CASE(discrete_shapes_are_orthonormal_in_their_own_mass) {
       }
   }
   {
-    const Result r = reg.get("difference_eq").solve(s, Discretization{{n}}, Options{});
+    const Result r = reg.get("difference_eq").solve(s, Discretization{{n}}, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     const double a = s.geometry.length / n, rhoA = s.material.rho * s.section().A;
     const double M[4][4] = {{156, 22, 54, -13}, {22, 4, 13, -3}, {54, 13, 156, -22}, {-13, -3, -22, 4}};
@@ -168,12 +169,12 @@ BOOST_AUTO_TEST_CASE(mac_against_exact_at_default_meshes) {
     s.request.modes = std::max(s.request.modes, 6);
     s = with_shapes(s, s.is_beam() ? ShapeRequest::kBeamDefaultNx : ShapeRequest::kPlateDefaultNx,
                     s.is_beam() ? 1 : ShapeRequest::kPlateDefaultNy);
-    const Result ex = reg.get("exact").solve(s, {}, Options{});
+    const Result ex = reg.get("exact").solve(s, {}, testing::own_error_study());
     BOOST_REQUIRE(ex.ok());
     for (const auto& run : c.runs) {
       const Solver& sv = reg.get(run.backend);
       const Discretization mesh = run.mesh.empty() ? sv.default_mesh(s) : Discretization::parse(run.mesh);
-      const Result r = sv.solve(s, mesh, Options{});
+      const Result r = sv.solve(s, mesh, testing::own_error_study());
       BOOST_TEST_CONTEXT(c.file << " " << run.backend << " " << mesh.spec()) {
         BOOST_REQUIRE(r.ok());
         BOOST_REQUIRE(!r.mode_shapes.empty());
@@ -201,7 +202,7 @@ BOOST_AUTO_TEST_CASE(cantilever_effective_masses) {
     const Discretization mesh = std::string(b) == "exact" ? Discretization{} : Discretization{{400}};
     // rfem: 100 modes of this beam by the dense eigensolver (its Lanczos path is flagged
     // not-converged here: the Sturm count finds 96 modes below its 100th).
-    Options o;
+    Options o = testing::own_error_study();
     if (std::string(b) == "rfem") o.backend = {{"eigen", "dense"}};
     const Result r = sv.solve(s, mesh, o);
     BOOST_TEST_CONTEXT(b) {
@@ -257,7 +258,7 @@ BOOST_AUTO_TEST_CASE(square_section_pairs_every_mode) {
 BOOST_AUTO_TEST_CASE(vtu_export_reads_back) {
   const modalbench_test::TempDir dir("modalbench_vtk");
   Scene s = with_shapes(scene("paper_ss_plate.toml"), 11, 7);
-  const Result r = make_default_registry().get("rfem").solve(s, Discretization{{20, 12}}, Options{});
+  const Result r = make_default_registry().get("rfem").solve(s, Discretization{{20, 12}}, testing::own_error_study());
   BOOST_REQUIRE(r.ok());
   const auto files = write_vtk(s, "rfem", r, dir.str());
   BOOST_REQUIRE(files.size() == 2u);  // modes and statics
@@ -283,5 +284,5 @@ BOOST_AUTO_TEST_CASE(vtu_export_reads_back) {
 BOOST_AUTO_TEST_CASE(no_request_no_shapes) {
   const Registry reg = make_default_registry();
   const Scene s = scene("paper_fixed_beam.toml");
-  for (const Solver* sv : reg.all()) BOOST_TEST(sv->solve(s, sv->default_mesh(s), Options{}).mode_shapes.empty(), sv->name());
+  for (const Solver* sv : reg.all()) BOOST_TEST(sv->solve(s, sv->default_mesh(s), testing::own_error_study()).mode_shapes.empty(), sv->name());
 }
