@@ -54,7 +54,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
     defl.push_back(e);
   }
   j["deflections"] = defl;
-  if (!r.frf.empty()) {
+  if (!r.frf.empty() || scene.request.frf) {  // requested: present, even when no sample could be computed
     json f = json::array();
     for (const auto& s : r.frf)
       f.push_back({{"omega_rad_s", num(s.omega_rad_s)}, {"re", num(s.receptance.real())}, {"im", num(s.receptance.imag())}});

@@ -54,6 +54,16 @@ void Summary::note_backward_error(double e) {
   max_backward_error = std::isnan(max_backward_error) ? e : std::max(max_backward_error, e);
 }
 
+void note_frf_omissions(Summary& sum, int skipped, int points, const std::string& reason) {
+  if (skipped <= 0) return;
+  if (skipped <= 2) {
+    sum.warnings.push_back(fmt::format("FRF: {} of {} sample(s) omitted (singular dynamic stiffness: on or within "
+                                       "rounding of a natural frequency; {})", skipped, points, reason));
+    return;
+  }
+  sum.raise(Status::NumericalIssue, fmt::format("FRF: {} of {} samples could not be computed ({})", skipped, points, reason));
+}
+
 std::string to_string(MassModel m) { return m == MassModel::Consistent ? "consistent" : "lumped"; }
 
 MassModel parse_mass_model(const std::string& text, const std::string& source, const std::string& key) {

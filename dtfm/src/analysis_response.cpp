@@ -88,9 +88,12 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
 
 std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2> excite, std::array<double, 2> observe,
                                                            const std::vector<double>& omegas, double eta,
-                                                           int* skipped) {
+                                                           int* skipped, std::string* reason) {
   std::vector<std::complex<double>> H(omegas.size(), 0.0);
   if (skipped) *skipped = 0;
+  auto why = [&](std::size_t s, const std::exception& e) {
+    if (reason && reason->empty()) *reason = fmt::format("at {:.6g} rad/s: {}", omegas[s], e.what());
+  };
   if (omegas.empty()) return H;
   PointLoad unit;
   unit.x = excite[0];
@@ -134,8 +137,9 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
         try {
           const Eigen::VectorXd d = assemble(c, lam, mesh).K.solve(f);
           H[s] += observe_at(Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(io) * c.mc, c.mc)));
-        } catch (const std::runtime_error&) {
+        } catch (const std::runtime_error& e) {
           bad[s] = 1;
+          why(s, e);
         }
       } else {
         Eigen::VectorXcd f = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
@@ -143,8 +147,9 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
         try {
           const Eigen::VectorXcd d = assemble(c, std::complex<double>(lam) / cdamp, mesh).solve(f);
           H[s] += observe_at(Eigen::VectorXcd(d.segment(static_cast<Eigen::Index>(io) * c.mc, c.mc)));
-        } catch (const std::runtime_error&) {
+        } catch (const std::runtime_error& e) {
           bad[s] = 1;
+          why(s, e);
         }
       }
     }

@@ -201,11 +201,11 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
     std::vector<double> omegas;
     for (int i = 0; i < f.points; ++i) omegas.push_back(f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1));
     int skipped = 0;
-    const auto H = la.receptance(f.excite, f.observe, omegas, scene.material.loss_factor, &skipped);
+    std::string reason;
+    const auto H = la.receptance(f.excite, f.observe, omegas, scene.material.loss_factor, &skipped, &reason);
     for (std::size_t i = 0; i < omegas.size(); ++i)
       if (std::isfinite(std::abs(H[i]))) r.frf.push_back({omegas[i], H[i]});
-    if (skipped)
-      sum.warnings.push_back(fmt::format("FRF: {} sample(s) on a natural frequency omitted", skipped));
+    note_frf_omissions(sum, skipped, f.points, reason);
     sum.timings_s.frf += timer.lap();
   }
   sum.set_diagnostic("count_evaluations", static_cast<double>(la.evaluations()));

@@ -139,15 +139,19 @@ void beam_frf(const Scene& s, Result& r) {
     r.summary.warnings.push_back("exact FRF is undamped: material.loss_factor is not applied");
   const BeamBending b = bending_xz(s);
   int skipped = 0;
+  std::string reason;
   for (int i = 0; i < f.points; ++i) {
     const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
     try {
       r.frf.push_back({w, beam_receptance(b, bend(s.x0), bend(s.xL), f.excite[0], f.observe[0], w, &r.summary.unknowns)});
-    } catch (const std::runtime_error&) {
-      ++skipped;  // omega sits on a natural frequency (or 0 for a mechanism): no finite receptance
+    } catch (const std::runtime_error& e) {
+      // On a natural frequency (or at 0 for a mechanism) K(omega) is singular: no finite receptance.
+      // Anything else that fails is a numerical breakdown, and is said as such below.
+      if (reason.empty()) reason = fmt::format("at {:.6g} rad/s: {}", w, e.what());
+      ++skipped;
     }
   }
-  if (skipped) r.summary.warnings.push_back(fmt::format("FRF: {} sample(s) on a natural frequency omitted", skipped));
+  note_frf_omissions(r.summary, skipped, f.points, reason);
 }
 
 void solve_beam(const Scene& s, ModeList& list, Result& r, Timer& timer) {
@@ -251,11 +255,7 @@ void navier_frf(const Scene& s, int terms, Result& r) {
     worst = std::max(worst, tail);
   }
   r.summary.set_diagnostic("frf_series_tail_relative_to_flexibility", flex > 0 ? worst / flex : 0.0);
-  if (omitted > 0)
-    r.summary.warnings.push_back(fmt::format("FRF: {} of {} samples lie on an undamped resonance and are omitted", omitted,
-                                             f.points));
-  if (omitted > 2)
-    r.summary.raise(Status::NumericalIssue, fmt::format("FRF: {} of {} samples omitted as resonances", omitted, f.points));
+  note_frf_omissions(r.summary, omitted, f.points, "the Navier series is infinite there: an undamped resonance");
   if (flex > 0 && worst > s.request.tolerance * flex)
     r.summary.raise(Status::NotConverged,
                     fmt::format("FRF: the Navier series truncated at {0} x {0} terms has an estimated error up to {1:.1e} "

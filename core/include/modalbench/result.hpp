@@ -143,6 +143,11 @@ struct Summary {
   void note_backward_error(double e);
 };
 
+/// Records FRF samples that could not be computed: up to two are omitted with a warning (on or
+/// within rounding of a natural frequency, K(omega) is singular); more cannot all be resonances,
+/// and make the result numerical-issue with `reason` (the first failure, in words).
+void note_frf_omissions(Summary& sum, int skipped, int points, const std::string& reason);
+
 struct Result {
   std::vector<double> frequencies_rad_s;  ///< ascending, repeated ones repeated
   std::vector<ModeFamily> mode_families;  ///< parallel to frequencies_rad_s

@@ -78,7 +78,8 @@ class LineAnalysis {
   /// Receptance w(observe) / Fz(excite) at each omega; `eta` structural loss factor. A sample
   /// at an undamped natural frequency is not finite: it is returned as NaN and counted.
   std::vector<std::complex<double>> receptance(std::array<double, 2> excite, std::array<double, 2> observe,
-                                               const std::vector<double>& omegas, double eta, int* skipped = nullptr);
+                                               const std::vector<double>& omegas, double eta, int* skipped = nullptr,
+                                               std::string* reason = nullptr);
   /// Shapes of the modes `modes` (from modes()) at `points` ((x, y); beams: y unused), the
   /// section response (PrismModel::section_response) per component (dofs index), with their raw
   /// generalized masses int q^T M q dx and participations int q^T M r_d dx (r_d: unit rigid
