@@ -59,21 +59,21 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
         "(need translational springs at both ends, or a translational and a rotational one)");
   BendingLine line(beam, left, right);
   const double L = beam.L;
-  for (auto& p : loads) line.sys.nodes_at.push_back(p.x / L);
-  for (double x : probes) line.sys.nodes_at.push_back(x / L);
+  // Loads and probes lie inside segments (exact fixed-end reactions and transfer): no node is
+  // made for them, so close points never make a short, stiff segment.
   AssembledLine asmb = assemble(line.sys, 0.0);
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
+  std::vector<LinePoint> points;
   for (auto& p : loads) {
-    const int n = asmb.node_at(p.x / L);
-    f[2 * n] += p.force * L * L / beam.EI;
-    f[2 * n + 1] += moment_sign * p.moment * L / beam.EI;
+    points.push_back({p.x / L, Eigen::Vector2d(p.force * L * L / beam.EI, moment_sign * p.moment * L / beam.EI)});
+    add_point_load(line.sys, asmb, 0.0, points.back(), f);
   }
   const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
   std::vector<BendingResponse> out;
   for (double x : probes) {
-    const int n = asmb.node_at(x / L);
-    out.push_back({d[2 * n] * L, moment_sign * d[2 * n + 1]});
+    const Eigen::VectorXd u = displacement_at(line.sys, asmb, 0.0, d, points, x / L);
+    out.push_back({u[0] * L, moment_sign * u[1]});
   }
   return out;
 }
@@ -83,28 +83,31 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
   if (!(k_left > 0 || k_right > 0))
     throw std::runtime_error("mechanism: neither end restrains the bar (axial or torsional rigid motion)");
   BarLine line(bar, k_left, k_right);
-  for (auto& p : loads) line.sys.nodes_at.push_back(p.x / bar.L);
-  for (double x : probes) line.sys.nodes_at.push_back(x / bar.L);
   AssembledLine asmb = assemble(line.sys, 0.0);
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes());
-  for (auto& p : loads) f[asmb.node_at(p.x / bar.L)] += p.force * bar.L / bar.S;
+  std::vector<LinePoint> points;
+  for (auto& p : loads) {
+    points.push_back({p.x / bar.L, Eigen::VectorXd::Constant(1, p.force * bar.L / bar.S)});
+    add_point_load(line.sys, asmb, 0.0, points.back(), f);
+  }
   const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
   std::vector<double> out;
-  for (double x : probes) out.push_back(d[asmb.node_at(x / bar.L)]);
+  for (double x : probes) out.push_back(displacement_at(line.sys, asmb, 0.0, d, points, x / bar.L)[0]);
   return out;
 }
 
 double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
                        double omega, long* unknowns) {
   BendingLine line(beam, left, right);
-  line.sys.nodes_at = {excite / beam.L, observe / beam.L};
-  AssembledLine asmb = assemble(line.sys, omega * omega);
+  const double lam = omega * omega;
+  AssembledLine asmb = assemble(line.sys, lam);
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
-  f[2 * asmb.node_at(excite / beam.L)] = beam.L * beam.L / beam.EI;
-  const Eigen::VectorXd d = solve_line(line.sys, asmb, omega * omega, f);
-  return d[2 * asmb.node_at(observe / beam.L)] * beam.L;
+  const std::vector<LinePoint> points = {{excite / beam.L, Eigen::Vector2d(beam.L * beam.L / beam.EI, 0.0)}};
+  add_point_load(line.sys, asmb, lam, points[0], f);
+  const Eigen::VectorXd d = solve_line(line.sys, asmb, lam, f);
+  return displacement_at(line.sys, asmb, lam, d, points, observe / beam.L)[0] * beam.L;
 }
 
 BeamBending bending_xz(const Scene& s) {

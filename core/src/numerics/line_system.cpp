@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "modalbench/numerics/balancing.hpp"
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
 
 namespace modalbench {
@@ -281,6 +282,80 @@ Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, dou
     }
   }
   return asmb.K.solve(f);
+}
+
+namespace {
+
+/// exp(A t), balanced like the segment matrices.
+Eigen::MatrixXd transfer(const Eigen::MatrixXd& A, double t) {
+  if (t == 0.0) return Eigen::MatrixXd::Identity(A.rows(), A.cols());
+  Eigen::MatrixXd B = A * t;
+  const Eigen::VectorXd s = balance_in_place(B, 20);
+  return s.asDiagonal() * Eigen::MatrixXd(B.exp()) * s.cwiseInverse().asDiagonal();
+}
+
+/// The node at x (>= 0), or -1 with `seg` the segment [xi[seg], xi[seg + 1]] holding x.
+int locate(const AssembledLine& asmb, double x, int& seg) {
+  const auto& xi = asmb.xi;
+  if (!(x >= xi.front() && x <= xi.back())) throw std::invalid_argument("LineSystem: point outside [0, 1]");
+  const auto it = std::lower_bound(xi.begin(), xi.end(), x);
+  const int i = static_cast<int>(it - xi.begin());
+  if (*it == x) return i;
+  seg = i - 1;
+  return -1;
+}
+
+/// Fixed-end state forces (left F_a, right F_c) of a clamped segment of length h under a point
+/// action f at offset s: the state's force part jumps by -f there, and d = 0 at both ends.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> fixed_end(const Eigen::MatrixXd& A, int m, double h, double s,
+                                                      const Eigen::VectorXd& f) {
+  const Eigen::MatrixXd Th = transfer(A, h), Tr = transfer(A, h - s);
+  const Eigen::VectorXd jump = -f;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(Th.topRightCorner(m, m));
+  const Eigen::VectorXd Fa = -lu.solve(Tr.topRightCorner(m, m) * jump);
+  const Eigen::VectorXd Fc = Th.bottomRightCorner(m, m) * Fa + Tr.bottomRightCorner(m, m) * jump;
+  return {Fa, Fc};
+}
+
+}  // namespace
+
+void add_point_load(const LineSystem& sys, const AssembledLine& asmb, double lambda, const LinePoint& p,
+                    Eigen::VectorXd& F) {
+  const int m = sys.m;
+  int seg = -1;
+  const int node = locate(asmb, p.xi, seg);
+  if (node >= 0) {
+    F.segment(static_cast<Eigen::Index>(node) * m, m) += p.f;
+    return;
+  }
+  const double a = asmb.xi[static_cast<std::size_t>(seg)], c = asmb.xi[static_cast<std::size_t>(seg) + 1];
+  const auto [Fa, Fc] = fixed_end(sys.state_matrix(lambda), m, c - a, p.xi - a, p.f);
+  // Equivalent nodal loads: minus the fixed-end reactions [-F_a; F_c] of K's convention.
+  F.segment(static_cast<Eigen::Index>(seg) * m, m) += Fa;
+  F.segment(static_cast<Eigen::Index>(seg + 1) * m, m) -= Fc;
+}
+
+Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
+                                const std::vector<LinePoint>& loads, double x) {
+  const int m = sys.m;
+  int seg = -1;
+  const int node = locate(asmb, x, seg);
+  if (node >= 0) return d.segment(static_cast<Eigen::Index>(node) * m, m);
+  const double a = asmb.xi[static_cast<std::size_t>(seg)], c = asmb.xi[static_cast<std::size_t>(seg) + 1];
+  const Eigen::MatrixXd A = sys.state_matrix(lambda);
+  const Eigen::MatrixXd K = segment_dynamic_stiffness(A, c - a);
+  Eigen::VectorXd dd(2 * m);
+  dd << d.segment(static_cast<Eigen::Index>(seg) * m, m), d.segment(static_cast<Eigen::Index>(seg + 1) * m, m);
+  // The segment's end force at a: K d plus the fixed-end reactions of the loads inside it.
+  Eigen::VectorXd Fa = -(K.topRows(m) * dd);
+  for (const auto& p : loads)
+    if (p.xi > a && p.xi < c) Fa += fixed_end(A, m, c - a, p.xi - a, p.f).first;
+  Eigen::VectorXd state(2 * m);
+  state << dd.head(m), Fa;
+  Eigen::VectorXd out = transfer(A, x - a) * state;
+  for (const auto& p : loads)
+    if (p.xi > a && p.xi < x) out += transfer(A, x - p.xi).rightCols(m) * (-p.f);  // the jump -f carried to x
+  return out.head(m);
 }
 
 LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats) {

@@ -66,6 +66,27 @@ struct LineRigidity {
   int free_rigid = 0;      ///< how many no end spring (finite or infinite) restrains: true rigid modes
 };
 
+/// A point action anywhere on the line (a node or not): its load in the nodal convention of
+/// K(lambda) d = f (m entries, the line's dimensionless units).
+struct LinePoint {
+  double xi = 0;
+  Eigen::VectorXd f;
+};
+
+/// Adds the equivalent nodal loads of `p` to F (nodes * m entries): at a node, p.f itself; inside a
+/// segment, the exact fixed-end reactions of that segment, from its transfer matrices exp(A h) and
+/// exp(A (h - s)). Loads and probes need not be nodes, so two close points never make a short,
+/// stiff segment whose elimination cancels every digit (a load 3e-7 L from a probe did).
+void add_point_load(const LineSystem& sys, const AssembledLine& asmb, double lambda, const LinePoint& p,
+                    Eigen::VectorXd& F);
+
+/// The m displacements at xi of the solution d of K(lambda) d = F, F built from `loads` by
+/// add_point_load: at a node, d there; inside a segment, the state of its left end (displacement
+/// and the end force of the segment, fixed-end reactions included) carried to xi by exp(A t), with
+/// the jumps of the loads in between.
+Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
+                                const std::vector<LinePoint>& loads, double xi);
+
 /// Solves K(lambda) d = f on `asmb` (built by assemble(sys, lambda) or with the same nodes).
 /// Uses the rigid-body split above where the line has rigid motions and its anchored elastic
 /// part is positive definite at lambda, otherwise the block LDL^T of asmb.K. Throws
