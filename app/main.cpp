@@ -18,6 +18,11 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
 #include "modalbench/harness/calculix.hpp"
 #include "modalbench/harness/comparison.hpp"
 #include "modalbench/json_output.hpp"
@@ -33,6 +38,40 @@ namespace {
 std::string scenes_dir() {
   if (const char* env = std::getenv("MODALBENCH_SCENES")) return env;
   return MODALBENCH_SCENES_DIR;
+}
+
+/// Solves on a worker thread and waits at most twice --max-time: the estimates that refuse a
+/// request up front are fitted, not bounds, and an iteration can stall (Lanczos restarts). A solve
+/// still running then is abandoned: the process prints a resource-limit result and exits with 2.
+mb::Result solve_within(const mb::Solver& solver, const mb::Scene& scene, const mb::Discretization& mesh,
+                        const mb::Options& opt, bool json) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool done = false;
+  mb::Result result;
+  std::thread worker([&] {
+    mb::Result r = solver.solve(scene, mesh, opt);
+    std::lock_guard<std::mutex> lock(m);
+    result = std::move(r);
+    done = true;
+    cv.notify_one();
+  });
+  std::unique_lock<std::mutex> lock(m);
+  const double hard_s = 2.0 * opt.max_time_s;
+  if (!cv.wait_for(lock, std::chrono::duration<double>(hard_s), [&] { return done; })) {
+    mb::Result stopped;
+    stopped.summary.mesh = mesh.spec();
+    stopped.summary.raise(mb::Status::ResourceLimit,
+                          fmt::format("{}: stopped after {:g} s, twice the time limit (--max-time {:g} s): the solve "
+                                      "ran far beyond its estimate; nothing of it is reported",
+                                      solver.name(), hard_s, opt.max_time_s));
+    if (json) std::cout << mb::to_json(scene, solver.name(), mesh, stopped).dump(2) << std::endl;
+    std::cerr << "modalbench: " << stopped.summary.message << std::endl;
+    std::_Exit(2);  // the worker cannot be interrupted; leave without unwinding it
+  }
+  lock.unlock();
+  worker.join();
+  return result;
 }
 
 int run_list(const mb::Registry& reg) {
@@ -237,7 +276,7 @@ int main(int argc, char** argv) {
           throw mb::InputError("command line", "--option", "expected KEY=VALUE (got '" + kv + "')");
         opt.backend.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
       }
-      const mb::Result r = solver.solve(scene, mesh, opt);
+      const mb::Result r = solve_within(solver, scene, mesh, opt, json);
       if (!vtk_dir.empty()) {
         for (const auto& f : mb::write_vtk(scene, backend, r, vtk_dir))
           (json ? std::cerr : std::cout) << "wrote " << f << "\n";

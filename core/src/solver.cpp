@@ -269,13 +269,15 @@ std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e
 /// `ratio` times coarser); returns the estimate and what exceeds the scene's tolerance.
 std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Scene& scene, const std::string& coarse_spec,
                                                                         double ratio, double order, const Result& fine,
-                                                                        const Result& coarse) {
+                                                                        const Result& coarse, bool other_is_finer = false) {
   ErrorEstimate e;
   e.tolerance = scene.request.tolerance;
   e.coarse_mesh = coarse_spec;
   e.ratio = ratio;
   e.order = order;
-  const double denom = std::pow(ratio, order) - 1.0;
+  // `fine` is the result judged; when the other mesh is the finer one (other_is_finer), the roles
+  // swap: the error of the coarser result is |q_H - q_h| r^p / (r^p - 1).
+  const double denom = other_is_finer ? (std::pow(ratio, order) - 1.0) / std::pow(ratio, order) : std::pow(ratio, order) - 1.0;
   std::vector<std::string> problems;
   if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty()) {
     const auto& f = fine.frequencies_rad_s;
@@ -320,8 +322,11 @@ std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Sc
                                        worst, fine.summary.mesh, coarse_spec, e.tolerance));
     }
   }
-  e.note = fmt::format("Richardson: |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), relative", fine.summary.mesh,
-                       coarse_spec, ratio, order);
+  e.note = other_is_finer ? fmt::format("Richardson against the finer mesh {}: |q(mesh {}) - q(mesh {})| {:.3g}^{:g} / "
+                                        "({:.3g}^{:g} - 1), relative (no coarser mesh of the family)",
+                                        coarse_spec, fine.summary.mesh, coarse_spec, ratio, order, ratio, order)
+                          : fmt::format("Richardson: |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), relative",
+                                        fine.summary.mesh, coarse_spec, ratio, order);
   return {e, problems};
 }
 
@@ -353,9 +358,16 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
       sum.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
       return result;
     }
-    // The coarser mesh of the error estimate is part of the request's cost.
-    const std::optional<CoarserMesh> coarse =
-        opt.estimate_error && (rq.modes > 0 || !rq.probes.empty()) ? coarser_mesh(scene, mesh, opt) : std::nullopt;
+    // The coarser mesh of the error estimate is part of the request's cost. A mesh too coarse to
+    // have a coarser one (1 beam segment, a 2 x 2 plate) is checked against a finer one instead.
+    const bool wants_estimate = opt.estimate_error && (rq.modes > 0 || !rq.probes.empty()) && !mesh.counts.empty();
+    std::optional<CoarserMesh> coarse = wants_estimate ? coarser_mesh(scene, mesh, opt) : std::nullopt;
+    bool check_is_finer = false;
+    if (wants_estimate && !coarse)
+      if (const std::optional<Discretization> f = finer_mesh(scene, mesh, 2.0)) {
+        coarse = CoarserMesh{*f, static_cast<double>(f->counts[0]) / mesh.counts[0], mesh_order(scene, opt)};
+        check_is_finer = true;
+      }
     ResourceEstimate est = estimate(scene, mesh, opt);
     if (coarse) {
       Scene cs = scene;
@@ -400,9 +412,14 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
       // The default mesh: refine until the estimate meets the tolerance (light solves only; the
       // whole request is then solved once on the mesh kept).
       const auto tc = clock::now();
-      Result prev = run(light, coarse->mesh);
-      Result cur = run(light, mesh);
-      verdict = judge_discretization(scene, coarse->mesh.spec(), coarse->ratio, coarse->order, cur, prev);
+      auto since_start = [&] { return std::chrono::duration<double>(clock::now() - t0).count(); };
+      Result prev = run(light, check_is_finer ? mesh : coarse->mesh);
+      Result cur = run(light, check_is_finer ? coarse->mesh : mesh);
+      verdict = judge_discretization(scene, check_is_finer ? mesh.spec() : coarse->mesh.spec(), coarse->ratio,
+                                     coarse->order, cur, prev);
+      if (check_is_finer) final_mesh = coarse->mesh;
+      // How far the estimates are from what this machine does: later steps are predicted with it.
+      double last_estimate = estimate(light, final_mesh, opt).seconds, last_time = cur.summary.total_time_s;
       for (int step = 0; step < 3 && !verdict->second.empty(); ++step) {
         const double worst = std::max(std::isnan(verdict->first.frequencies) ? 0.0 : verdict->first.frequencies,
                                     std::isnan(verdict->first.deflections) ? 0.0 : verdict->first.deflections);
@@ -410,15 +427,21 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
         const std::optional<Discretization> next = finer_mesh(scene, final_mesh, std::isfinite(factor) ? factor : 4.0);
         if (!next) break;
         const ResourceEstimate ne = estimate(scene, *next, opt);
-        if (ne.bytes > memory_limit || ne.seconds > opt.max_time_s) {
+        const double calibration = last_estimate > 0 && last_time > last_estimate ? last_time / last_estimate : 1.0;
+        // The next light solve, then the whole request on it (about as dear, and more with an FRF).
+        const double predicted = 2.0 * ne.seconds * calibration;
+        if (ne.bytes > memory_limit || since_start() + predicted > opt.max_time_s) {
           estimate_warnings.push_back(fmt::format(
-              "refinement stopped at mesh {}: the next, {}, is estimated at {} and {:.3g} s, over the limits",
-              final_mesh.spec(), next->spec(), gigabytes(ne.bytes), ne.seconds));
+              "refinement stopped at mesh {}: the next, {}, is estimated at {} and {:.3g} s (after {:.3g} s), over the "
+              "limits (--max-memory, --max-time)",
+              final_mesh.spec(), next->spec(), gigabytes(ne.bytes), predicted, since_start()));
           break;
         }
         const double ratio = static_cast<double>(next->counts[0]) / final_mesh.counts[0];
         prev = std::move(cur);
         cur = run(light, *next);
+        last_estimate = estimate(light, *next, opt).seconds;
+        last_time = cur.summary.total_time_s;
         verdict = judge_discretization(scene, final_mesh.spec(), ratio, coarse->order, cur, prev);
         final_mesh = *next;
       }
@@ -441,7 +464,9 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
       const auto tc = clock::now();
       try {
         const Result cr = run(light, coarse->mesh);
-        verdict = judge_discretization(scene, coarse->mesh.spec(), coarse->ratio, coarse->order, result, cr);
+        verdict = check_is_finer
+                      ? judge_discretization(scene, coarse->mesh.spec(), coarse->ratio, coarse->order, result, cr, true)
+                      : judge_discretization(scene, coarse->mesh.spec(), coarse->ratio, coarse->order, result, cr);
         if (cr.summary.status != Status::Success)
           estimate_warnings.push_back(fmt::format("the coarser mesh {} of the error estimate was {}: {}",
                                                   coarse->mesh.spec(), to_string(cr.summary.status), cr.summary.message));

@@ -139,6 +139,9 @@ class Solver {
   virtual std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization&, const Options&) const {
     return std::nullopt;
   }
+  /// The order at which the frequencies of this back-end's meshes converge (for a check against a
+  /// finer mesh when there is no coarser one).
+  virtual double mesh_order(const Scene&, const Options&) const { return 2.0; }
   /// A mesh of the same family about `factor` (> 1) times finer in each direction (nullopt: none).
   virtual std::optional<Discretization> finer_mesh(const Scene&, const Discretization&, double /*factor*/) const {
     return std::nullopt;

@@ -75,6 +75,10 @@ class DifferenceEqSolver final : public Solver {
   /// The coarser mesh of the self-check (halved counts, order 2; order 4 with consistent mass, R/2 only when loads and probes stay on nodes).
   std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
                                           const Options& options) const override;
+  /// 4 with the consistent mass, 2 with the lumped one (Hermite cubic eigenvalues).
+  double mesh_order(const Scene&, const Options& options) const override {
+    return options.mass == MassModel::Consistent ? 4.0 : 2.0;
+  }
   /// The default mesh refined towards the tolerance (counts times factor).
   std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
   /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
