@@ -11,7 +11,7 @@ PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev
             libsuitesparse-dev libopenblas0-serial gnuplot-nox calculix-ccx \
             pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed
 
-.PHONY: all deps configure build report test bench sanitize clean
+.PHONY: all deps configure build report test bench sanitize fuzz clean
 
 all: build
 
@@ -50,11 +50,21 @@ test: build
 bench: build
 	@set -e; for b in $(BUILD)/benchmarks/*/bench_*; do echo "=== $$b"; "$$b"; done
 
-# The address and undefined-behaviour sanitizer build, with the whole test suite.
+# The address and undefined-behaviour sanitizer build, with the whole test suite and the fuzz
+# corpus replayed (no address-space cap: ASan reserves terabytes of it).
 sanitize: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMODALBENCH_SANITIZE=ON -DMODALBENCH_PYTHON=OFF
 	cmake --build build-asan -j $(JOBS)
-	ctest --test-dir build-asan --output-on-failure -j $(JOBS)
+	ctest --test-dir build-asan --output-on-failure -j $(JOBS) -E '^fuzz\.'
+	python3 tests/fuzz/fuzz.py --exe build-asan/app/modalbench --replay tests/fuzz/corpus --out build-asan/fuzz-replay \
+	  --mem-cap-mb 0 --time-cap 300 --solver-max-time 120
+
+# The scene fuzzer: 2000 seeded cases on every back-end; each finding is kept as a scene under
+# $(BUILD)/fuzz/findings (copy the ones worth keeping into tests/fuzz/corpus for replay).
+FUZZ_CASES ?= 2000
+fuzz: build
+	python3 tests/fuzz/fuzz.py --exe $(BUILD)/app/modalbench --cases $(FUZZ_CASES) --seed 1 --out $(BUILD)/fuzz \
+	  --keep-findings $(BUILD)/fuzz/findings --jobs $(JOBS) --solver-max-time 5
 
 clean:
 	rm -rf $(BUILD) build-asan

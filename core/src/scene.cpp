@@ -95,10 +95,13 @@ double Scene::plate_D() const {
 
 std::pair<int, int> plate_half_waves(double a, double b, int k) {
   k = std::max(1, k);
-  // Number of (m, n >= 1) with (m/a)^2 + (n/b)^2 <= lam.
+  // Number of (m, n >= 1) with (m/a)^2 + (n/b)^2 <= lam, summed over the index of the shorter
+  // side (few terms however elongated the plate: a 10 m x 1e-8 m strip made 1e9 of the other).
+  const double s_long = std::max(a, b), s_short = std::min(a, b);
   auto count = [&](double lam) {
     double c = 0;
-    for (int m = 1; m / a <= std::sqrt(lam) && c < 1e12; ++m) c += std::floor(b * std::sqrt(lam - (m / a) * (m / a)));
+    for (int j = 1; j / s_short <= std::sqrt(lam) && c < 1e12 && j < 100000000; ++j)
+      c += std::floor(s_long * std::sqrt(lam - (j / s_short) * (j / s_short)));
     return c;
   };
   double lo = 0, hi = 1.0 / (a * a) + 1.0 / (b * b);

@@ -399,16 +399,18 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     light.request.frf.reset();
     light.request.shapes.reset();
     auto run = [&](const Scene& sc, const Discretization& m) {
+      const auto ts = clock::now();
       Result x;
       x.summary.mesh = m.spec();
       do_solve(sc, m, opt, x);
+      x.summary.total_time_s = std::chrono::duration<double>(clock::now() - ts).count();
       return x;
     };
     Discretization final_mesh = mesh;
     std::optional<std::pair<ErrorEstimate, std::vector<std::string>>> verdict;
     std::vector<std::string> estimate_warnings;
     double estimate_time = 0;
-    if (coarse && opt.refine_to_tolerance) {
+    if (coarse && opt.refine_to_tolerance) try {
       // The default mesh: refine until the estimate meets the tolerance (light solves only; the
       // whole request is then solved once on the mesh kept).
       const auto tc = clock::now();
@@ -452,6 +454,14 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
       if (final_mesh.spec() != mesh.spec())
         sum.warnings.push_back(fmt::format("default mesh {} refined to {} to meet the tolerance {:.2g}", mesh.spec(),
                                            final_mesh.spec(), scene.request.tolerance));
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      // A solve of the refinement failed: the request is solved on the default mesh, and its own
+      // check (below) says what it can.
+      estimate_warnings.push_back(std::string("refinement of the default mesh abandoned: ") + e.what());
+      verdict.reset();
+      final_mesh = mesh;
     }
     sum.mesh = final_mesh.spec();
     do_solve(scene, final_mesh, opt, result);

@@ -131,7 +131,7 @@ std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discr
 
 // Fitted to runs of `modalbench solve --json` on the 2-core machine (Release, /usr/bin/time peak
 // resident memory less the ~20 MB of the process): beams of 10^4 to 1.6 * 10^5 segments in
-// bending (modes 3.1 KB and 11 us, statics 1.8 KB and 3.6 us per segment, a direct FRF 3.4 KB and
+// bending (6 modes 3.1 KB and 11 us, statics 1.8 KB and 3.6 us per segment, a direct FRF 3.4 KB and
 // 0.23 us per segment and sample), Kirchhoff plates of 6,000 to 96,000 fragments (modes 7.5 KB and
 // 37-54 us, statics 4.7 KB and 17-35 us per fragment, a direct FRF 4.4 KB and 3.6-7.4 us per fragment
 // and sample). Per coordinate the costs scale with the DOFs an element carries; Mindlin plates
@@ -146,7 +146,8 @@ ResourceEstimate RfemSolver::estimate(const Scene& s, const Discretization& mesh
     const double n = mesh.counts[0];
     const double d = s.physics == Physics::Spatial ? 3.0 : s.physics == Physics::Planar ? 1.5 : 1.0;
     double bytes = 0, t = 0;
-    if (k > 0) { bytes = std::max(bytes, 3.1e3 * n * d * (1 + k / 60)); t += n * d * (6e-6 + 1e-6 * k); }
+    // Lanczos: ~k^1.5 per segment (measured 10 s for 200 modes of 8192 segments, 1.8 s for 6 of 160,000).
+    if (k > 0) { bytes = std::max(bytes, 3.1e3 * n * d * (1 + k / 60)); t += n * d * (6e-6 + 4.3e-7 * std::pow(k, 1.5)); }
     if (!rq.probes.empty()) { bytes = std::max(bytes, 1.8e3 * n * d); t += 3.6e-6 * n * d; }
     if (rq.frf && !modal_frf) { bytes = std::max(bytes, 3.4e3 * n * d); t += 0.23e-6 * n * d * samples; }
     e.bytes = bytes;
