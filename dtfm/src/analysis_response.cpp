@@ -9,19 +9,89 @@
 #include <stdexcept>
 
 #include "analysis_detail.hpp"
+#include "modalbench/numerics/balancing.hpp"
 #include "modalbench/numerics/line_system.hpp"
+#include "modalbench/numerics/segment_dynamic_stiffness.hpp"
+
+#include <unsupported/Eigen/MatrixFunctions>
 
 namespace modalbench::dtfm {
 
 namespace {
-using detail::to_fields;
+
+/// A probe or observation point within `delta` of a node is not made a node (a piece that short is
+/// so stiff that eliminating it cancels every digit: 3e-7 L from a load did): it is attached to the
+/// node and reached from it by the transfer matrix exp(A t).
+struct Attached {
+  double anchor = 0;  // the node it is reached from (itself when it is a node)
+  double t = 0;       // offset from that node
+};
+
+/// Points that become nodes (appended to `kept`, which holds the loads) and, for the others, the
+/// node within `delta` they are reached from.
+std::vector<Attached> attach(const std::vector<double>& points, std::vector<double>& kept, double L, double delta) {
+  std::vector<Attached> out(points.size());
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    const double x = std::clamp(points[j], 0.0, L);
+    double anchor = 0.0;
+    for (double k : {0.0, L}) if (std::abs(x - k) < std::abs(x - anchor)) anchor = k;
+    for (double k : kept) if (std::abs(x - k) < std::abs(x - anchor)) anchor = k;
+    if (std::abs(x - anchor) >= delta) {
+      kept.push_back(x);
+      anchor = x;
+    }
+    out[j] = {anchor, x - anchor};
+  }
+  return out;
+}
+
+LongSegment segment_k(const Eigen::MatrixXd& A, double h, int levels) { return long_segment_dynamic_stiffness(A, h, levels); }
+LongSegmentC segment_k(const Eigen::MatrixXcd& A, double h, int levels) { return long_segment_dynamic_stiffness(A, h, levels); }
+
+/// Class displacements (end nodes out of their B coordinates) at x[i] + t from a solution d: the
+/// state of node i on the side of t (its displacement and the adjacent segment's end force)
+/// carried by exp(A t).
+template <class Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, 1> near_node(const LineAnalysis::ClassLine& c, Scalar lambda,
+                                                   const std::vector<double>& x, double h_base,
+                                                   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& d, int i, double t) {
+  using Mat = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vec = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  const int nn = static_cast<int>(x.size()), mc = c.mc;
+  auto node_d = [&](int k) {
+    Vec v = d.segment(static_cast<Eigen::Index>(k) * mc, mc);
+    if (k == 0) v = c.ends[0].B.template cast<Scalar>() * v;
+    if (k == nn - 1) v = c.ends[1].B.template cast<Scalar>() * v;
+    return v;
+  };
+  if (t == 0.0) return node_d(i);
+  const bool right = t > 0;
+  const int a = right ? i : i - 1;
+  if (a < 0 || a + 1 >= nn) return node_d(i);  // cannot happen: points lie in [0, L]
+  const Mat A = c.state(lambda);
+  const double h = x[static_cast<std::size_t>(a) + 1] - x[static_cast<std::size_t>(a)];
+  const int levels = std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+  const Mat K = segment_k(A, h, levels).K;
+  Vec dd(2 * mc), eta(2 * mc);
+  dd << node_d(a), node_d(a + 1);
+  // K [d_a; d_b] = [-F(a+); F(b-)].
+  if (right) eta << node_d(i), -(K.topRows(mc) * dd);
+  else eta << node_d(i), K.bottomRows(mc) * dd;
+  Mat B = A * Scalar(t);
+  const Eigen::VectorXd s = balance_in_place(B, 20);
+  const Mat T = s.template cast<Scalar>().asDiagonal() * Mat(B.exp()) * s.cwiseInverse().template cast<Scalar>().asDiagonal();
+  return (T * eta).head(mc);
+}
+
 }  // namespace
 
 std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& loads,
                                               const std::vector<std::array<double, 2>>& probes) {
   std::vector<double> required;
-  for (const auto& p : loads) required.push_back(p.x);
-  for (const auto& p : probes) required.push_back(p[0]);
+  for (const auto& p : loads) required.push_back(std::clamp(p.x, 0.0, model_.length));
+  std::vector<double> probe_x;
+  for (const auto& p : probes) probe_x.push_back(p[0]);
+  const std::vector<Attached> at = attach(probe_x, required, model_.length, 1e-4 * model_.length);
   const int m = model_.m;
   std::vector<Eigen::VectorXd> qp(probes.size(), Eigen::VectorXd::Zero(m));
   // Each class's share of the loads (physical units): a class is unloaded when its share is
@@ -74,8 +144,10 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       throw std::runtime_error(fmt::format("static solve of the {} family failed numerically: {}", to_string(c.family),
                                            e.what()));
     }
-    const auto q = to_fields(c, d, nn);
-    for (std::size_t j = 0; j < probes.size(); ++j) qp[j] += q[node(std::clamp(probes[j][0], 0.0, model_.length))];
+    for (std::size_t j = 0; j < probes.size(); ++j) {
+      const Eigen::VectorXd dc = near_node<double>(c, 0.0, x, mesh.h_base, d, node(at[j].anchor), at[j].t);
+      qp[j] += c.W * dc;
+    }
   }
   std::vector<Deflection> out;
   for (std::size_t j = 0; j < probes.size(); ++j) {
@@ -109,7 +181,9 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
     const Eigen::VectorXd fc0 = c.W.transpose() * f_full / c.sigma;
     const Eigen::RowVectorXd oc = o_full * c.W;
     if (fc0.norm() == 0.0 || oc.norm() == 0.0) continue;
-    const Mesh mesh = mesh_for(c, w_max * w_max, {excite[0], observe[0]});
+    std::vector<double> required = {std::clamp(excite[0], 0.0, model_.length)};
+    const Attached ob = attach({observe[0]}, required, model_.length, 1e-4 * model_.length)[0];
+    const Mesh mesh = mesh_for(c, w_max * w_max, required);
     const auto& x = mesh.x;
     const int nn = static_cast<int>(x.size());
     auto node = [&](double xx) {
@@ -118,16 +192,15 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
       return 0;
     };
     const int ie = node(std::clamp(excite[0], 0.0, model_.length));
-    const int io = node(std::clamp(observe[0], 0.0, model_.length));
+    const int io = node(ob.anchor);
     Eigen::VectorXd fc = fc0;
     if (ie == 0) fc = c.ends[0].B.transpose() * fc;
     if (ie == nn - 1) fc = c.ends[1].B.transpose() * fc;
-    auto observe_at = [&](auto dnode) {
-      using V = std::decay_t<decltype(dnode)>;
-      V d = dnode;
-      if (io == 0) d = c.ends[0].B.template cast<typename V::Scalar>() * d;
-      if (io == nn - 1) d = c.ends[1].B.template cast<typename V::Scalar>() * d;
-      return (oc.template cast<typename V::Scalar>() * d)(0);
+    // The observation point: a node, or reached from the node within 1e-4 L of it (near_node).
+    auto observe_at = [&](const auto& d, auto lambda) {
+      using Scalar = decltype(lambda);
+      const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> dc = near_node<Scalar>(c, lambda, x, mesh.h_base, d, io, ob.t);
+      return (oc.template cast<Scalar>() * dc)(0);
     };
     for (std::size_t s = 0; s < omegas.size(); ++s) {
       const double lam = omegas[s] * omegas[s];
@@ -136,7 +209,7 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
         f.segment(static_cast<Eigen::Index>(ie) * c.mc, c.mc) = fc;
         try {
           const Eigen::VectorXd d = assemble(c, lam, mesh).K.solve(f);
-          H[s] += observe_at(Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(io) * c.mc, c.mc)));
+          H[s] += observe_at(d, lam);
         } catch (const std::runtime_error& e) {
           bad[s] = 1;
           why(s, e);
@@ -145,8 +218,9 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
         Eigen::VectorXcd f = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
         f.segment(static_cast<Eigen::Index>(ie) * c.mc, c.mc) = fc.cast<std::complex<double>>() / cdamp;
         try {
-          const Eigen::VectorXcd d = assemble(c, std::complex<double>(lam) / cdamp, mesh).solve(f);
-          H[s] += observe_at(Eigen::VectorXcd(d.segment(static_cast<Eigen::Index>(io) * c.mc, c.mc)));
+          const std::complex<double> lam_c = std::complex<double>(lam) / cdamp;
+          const Eigen::VectorXcd d = assemble(c, lam_c, mesh).solve(f);
+          H[s] += observe_at(d, lam_c);
         } catch (const std::runtime_error& e) {
           bad[s] = 1;
           why(s, e);

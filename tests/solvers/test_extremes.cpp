@@ -284,7 +284,9 @@ BOOST_AUTO_TEST_CASE(close_points_are_not_blamed_on_the_supports) {
       BOOST_TEST(to_string(r.summary.status) != "invalid-input", r.summary.message);
       BOOST_TEST(r.summary.message.find("supports: static solve impossible") == std::string::npos,
                  r.summary.message);
-      if (r.summary.status == Status::Success) {
+      // (dtfm's default 2 x 2 section tends to 3D elasticity, not to this Euler-Bernoulli closed
+      // form: its layers carry shear, 6 % here; its one-prism beam is checked below.)
+      if (r.summary.status == Status::Success && r.summary.converges_to_scene_theory) {
         BOOST_REQUIRE(r.deflections.size() == 2u);
         BOOST_TEST(rel(r.deflections[0].w, w_probe) < 1e-3);
         BOOST_TEST(rel(r.deflections[1].w, w_tip) < 1e-3);
@@ -292,12 +294,17 @@ BOOST_AUTO_TEST_CASE(close_points_are_not_blamed_on_the_supports) {
     }
   }
   // exact solves it: loads and probes inside segments (fixed-end reactions, transfer), no node
-  // for either, so no 3.3e-7 m segment. It was "singular to working precision".
-  const Result ex = run("exact", s);
-  BOOST_TEST(ex.ok(), ex.summary.message);
-  BOOST_REQUIRE(ex.deflections.size() == 2u);
-  BOOST_TEST(rel(ex.deflections[0].w, w_probe) < 1e-12);
-  BOOST_TEST(rel(ex.deflections[1].w, w_tip) < 1e-12);
+  // for either, so no 3.3e-7 m segment. It was "singular to working precision". dtfm's one-prism
+  // beam (the exact beam of its section) reaches the probe from the load's node by exp(A t).
+  for (const char* b : {"exact", "dtfm"}) {
+    BOOST_TEST_CONTEXT(b) {
+      const Result ex = run(b, s, std::string(b) == "dtfm" ? "1x1" : "");
+      BOOST_TEST(ex.ok(), ex.summary.message);
+      BOOST_REQUIRE(ex.deflections.size() == 2u);
+      BOOST_TEST(rel(ex.deflections[0].w, w_probe) < 1e-12);
+      BOOST_TEST(rel(ex.deflections[1].w, w_tip) < 1e-12);
+    }
+  }
   // Points 1e-9, 1e-6, 1e-4 m apart and 1e-9 m from the clamped end: the same closed form.
   for (double gap : {1e-9, 1e-6, 1e-4}) {
     Scene t = s;
@@ -336,7 +343,7 @@ BOOST_AUTO_TEST_CASE(frf_samples_are_not_lost_silently) {
   for (const char* b : {"exact", "dtfm"}) {
     BOOST_TEST_CONTEXT(b) {
       const Result r = run(b, s, std::string(b) == "dtfm" ? "1x1" : "");
-      if (std::string(b) == "exact") BOOST_TEST(r.frf.size() == 10u);  // excite and observe inside segments
+      BOOST_TEST(r.frf.size() == 10u);  // exact: inside segments; dtfm: observe reached from the excite node
       if (r.frf.size() < 8u) {
         BOOST_TEST(to_string(r.summary.status) == "numerical-issue");
         BOOST_TEST(r.summary.message.find("samples could not be computed") != std::string::npos, r.summary.message);
