@@ -279,6 +279,16 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
     if (shown < k) sum.warnings.push_back(fmt::format("{} of {} requested modes computed", shown, k));
     if (s.request.shapes && shown > 0) r.mode_shapes = sample_shapes(s, model, sys, md.Z, shown);
     method += "; modes: " + md.method;
+    if (md.near_rigid_bound > 0) {
+      // Relative error bound of the near-rigid frequencies (half that of their eigenvalues): it
+      // must stay well inside the accuracy asked (1 % of the tolerance).
+      const double bound = 0.5 * md.near_rigid_bound;
+      sum.set_diagnostic("near_rigid_frequency_error_bound", bound);
+      if (!(bound <= 1e-2 * s.request.tolerance))
+        sum.raise(Status::NumericalIssue,
+                  fmt::format("near-rigid modes: their Rayleigh-Ritz frequencies are only known to {:.2g} (Kato-Temple "
+                              "bound), above 1 % of the tolerance {:.2g}", bound, s.request.tolerance));
+    }
     if (!md.converged) sum.raise(Status::NotConverged, "eigen solve not converged: see warnings");
     else if (md.max_backward_error > 1e-8)
       sum.raise(Status::NumericalIssue, fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g})",

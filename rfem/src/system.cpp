@@ -303,7 +303,9 @@ std::string coordinate_name(const Model& m, const System& sys, long i) {
 }
 
 
-RigidModes free_rigid_modes(const Model& m, const System& sys) {
+namespace {
+/// The six rigid motions of the elements about their mean centre (active DOFs), over q.
+void rigid_candidates(const Model& m, std::vector<Eigen::VectorXd>& cand, std::vector<std::string>& cand_names) {
   const double L = m.length_scale;
   const int na = m.dofs_per_element();
   const long nq = m.body_dofs();
@@ -312,8 +314,6 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
   c0 /= static_cast<double>(m.elements.size());
   static const char* kNames[6] = {"translation x", "translation y", "translation z",
                                   "rotation about x", "rotation about y", "rotation about z"};
-  std::vector<Eigen::VectorXd> cand;
-  std::vector<std::string> cand_names;
   for (int c = 0; c < 6; ++c) {
     const Vector6d e6 = Vector6d::Unit(c) * (c < 3 ? 1.0 : 1.0 / L);
     Eigen::VectorXd q(nq);
@@ -326,6 +326,15 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
       cand_names.push_back(kNames[c]);
     }
   }
+}
+}  // namespace
+
+RigidModes free_rigid_modes(const Model& m, const System& sys) {
+  const double L = m.length_scale;
+  const long nq = m.body_dofs();
+  std::vector<Eigen::VectorXd> cand;
+  std::vector<std::string> cand_names;
+  rigid_candidates(m, cand, cand_names);
   RigidModes out;
   out.Z.resize(sys.n(), 0);
   if (cand.empty()) return out;
@@ -390,6 +399,89 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
   Eigen::LLT<Eigen::MatrixXd> llt(S);
   if (llt.info() != Eigen::Success) throw std::runtime_error("rfem: rigid-mode Gram matrix not positive definite");
   out.Z = llt.matrixU().solve<Eigen::OnTheRight>(Z);  // Z U^{-1}: M-orthonormal
+  return out;
+}
+
+NearRigid near_rigid_modes(const Model& m, const System& sys) {
+  NearRigid out;
+  out.Z.resize(sys.n(), 0);
+  const double L = m.length_scale;
+  std::vector<Eigen::VectorXd> cand;
+  std::vector<std::string> names;
+  rigid_candidates(m, cand, names);
+  const long nc = static_cast<long>(cand.size());
+  if (nc == 0) return out;
+  // Internal deformation (SDEs between elements, couplings), as in free_rigid_modes, and the
+  // energy of the finite springs to ground; a spring to ground that is rigid is a held support.
+  Eigen::MatrixXd internal = Eigen::MatrixXd::Zero(nc, nc), ground = Eigen::MatrixXd::Zero(nc, nc);
+  Eigen::MatrixXd def(6, nc);
+  bool any_ground = false;
+  for (const Sde& sd : m.sdes) {
+    for (long j = 0; j < nc; ++j) def.col(j) = deformation(m, sd, cand[static_cast<std::size_t>(j)]);
+    for (int c = 0; c < 6; ++c) {
+      const double k = sd.stiffness[c];
+      if (k == 0) continue;
+      if (sd.b == kGround && std::isfinite(k)) {
+        ground.noalias() += k * def.row(c).transpose() * def.row(c);
+        any_ground = true;
+      } else if (sd.b != kGround) {
+        const Eigen::RowVectorXd r = def.row(c) * (c < 3 ? 1.0 : L);
+        internal.noalias() += r.transpose() * r;
+      }
+    }
+  }
+  if (!any_ground) return out;
+  const Eigen::MatrixXd* last = nullptr;
+  double nk = 0;
+  Eigen::MatrixXd V, F;
+  for (const Coupling& cp : m.couplings) {
+    if (cp.stiffness.get() != last) last = cp.stiffness.get(), nk = last->norm();
+    if (nk == 0) continue;
+    V.resize(6 * static_cast<long>(cp.elements.size()), nc);
+    for (long j = 0; j < nc; ++j)
+      for (std::size_t i = 0; i < cp.elements.size(); ++i)
+        V.block<6, 1>(6 * static_cast<long>(i), j) = body_vector(m, cand[static_cast<std::size_t>(j)], cp.elements[i]);
+    F.noalias() = *last * V;
+    internal.noalias() += (L / nk) * (L / nk) * (F.transpose() * F);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(internal);
+  if (es.info() != Eigen::Success) return out;
+  // Combinations that deform nothing inside, representable over z (not held by a rigid support).
+  SpMat TtT = sys.T.transpose() * sys.T;
+  Eigen::SimplicialLDLT<SpMat> ldlt(TtT);
+  if (ldlt.info() != Eigen::Success) return out;
+  std::vector<Eigen::VectorXd> zs, coef;
+  for (long i = 0; i < nc; ++i) {
+    if (!(std::sqrt(std::max(0.0, es.eigenvalues()[i])) <= 1e-9)) continue;
+    const Eigen::VectorXd nv = es.eigenvectors().col(i);
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(cand[0].size());
+    for (long j = 0; j < nc; ++j) q += nv[j] * cand[static_cast<std::size_t>(j)];
+    const Eigen::VectorXd z = ldlt.solve(sys.T.transpose() * q);
+    if ((sys.T * z - q).norm() > 1e-8 * q.norm()) continue;
+    zs.push_back(z);
+    coef.push_back(nv);
+  }
+  const long r = static_cast<long>(zs.size());
+  if (r == 0) return out;
+  Eigen::MatrixXd Z(sys.n(), r), C(nc, r);
+  for (long i = 0; i < r; ++i) {
+    Z.col(i) = zs[static_cast<std::size_t>(i)];
+    C.col(i) = coef[static_cast<std::size_t>(i)];
+  }
+  const Eigen::MatrixXd Kr = C.transpose() * ground * C, Mr = Z.transpose() * (sys.M * Z);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> g(0.5 * (Kr + Kr.transpose()), 0.5 * (Mr + Mr.transpose()));
+  if (g.info() != Eigen::Success) return out;
+  // Zero eigenvalues are the free rigid modes (free_rigid_modes); the positive ones are near-rigid.
+  std::vector<long> keep;
+  const double scale = std::max(g.eigenvalues().cwiseAbs().maxCoeff(), 1e-300);
+  for (long i = 0; i < r; ++i)
+    if (g.eigenvalues()[i] > 1e-12 * scale) keep.push_back(i);
+  out.lambda.resize(static_cast<long>(keep.size()));
+  out.Z.resize(sys.n(), static_cast<long>(keep.size()));
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    out.lambda[static_cast<long>(k)] = g.eigenvalues()[keep[k]];
+    out.Z.col(static_cast<long>(k)) = Z * g.eigenvectors().col(keep[k]);  // M-orthonormal (Mr-normalized)
+  }
   return out;
 }
 

@@ -56,6 +56,9 @@ struct Modes {
   long sturm_count = -1;           ///< eigenvalues below the check point; -1 if not checked
   double max_residual = 0;
   double max_backward_error = 0;
+  /// Near-rigid pairs (Rayleigh-Ritz in the rigid subspace): largest Kato-Temple bound on their
+  /// relative eigenvalue error (0 when there are none).
+  double near_rigid_bound = 0;
   bool converged = true;
   std::vector<std::string> warnings;
   std::vector<std::string> fallbacks;  ///< each fall-back taken, with why

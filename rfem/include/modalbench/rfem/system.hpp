@@ -76,4 +76,15 @@ struct RigidModes {
 /// the combinations that deform none of them are the free rigid modes.
 RigidModes free_rigid_modes(const Model& model, const System& sys);
 
+/// Near-rigid modes: rigid motions that deform no internal SDE or coupling but are restrained by
+/// finite springs to ground only. Their eigenpairs are computed in that subspace (Rayleigh-Ritz
+/// with the ground springs' energy and the mass), without forming K: a Lanczos or dense solve of
+/// K loses them in the rounding of the elastic stiffness once the springs are 1e-12 of it (1e-6
+/// N/m springs on a steel beam came out as 0). Relative accuracy O(k_springs / k_elastic).
+struct NearRigid {
+  Eigen::VectorXd lambda;  ///< ascending, > 0
+  Eigen::MatrixXd Z;       ///< n x r over z, M-orthonormal
+};
+NearRigid near_rigid_modes(const Model& model, const System& sys);
+
 }  // namespace modalbench::rfem
