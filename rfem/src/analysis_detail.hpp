@@ -3,7 +3,9 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +15,17 @@ namespace modalbench::rfem::detail {
 
 using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// max over columns of sum |A_ij| (the matrix 1-norm, for normwise backward errors).
+inline double norm1(const SpMat& A) {
+  double best = 0;
+  for (int j = 0; j < A.outerSize(); ++j) {
+    double c = 0;
+    for (SpMat::InnerIterator it(A, j); it; ++it) c += std::abs(it.value());
+    best = std::max(best, c);
+  }
+  return best;
+}
 
 /// r - G' (G G')^{-1} G r: removes the part of a force that the constraints carry.
 class ConstraintProjector {

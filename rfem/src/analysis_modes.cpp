@@ -394,16 +394,7 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
   // Residuals and backward errors.
   const ConstraintProjector P(sys.G);
   const SpMat Ka = sys.K.cwiseAbs(), Ma = sys.M.cwiseAbs();
-  auto norm1 = [](const SpMat& A) {
-    double best = 0;
-    for (int j = 0; j < A.outerSize(); ++j) {
-      double c = 0;
-      for (SpMat::InnerIterator it(A, j); it; ++it) c += std::abs(it.value());
-      best = std::max(best, c);
-    }
-    return best;
-  };
-  const double k_norm = norm1(sys.K), m_norm = norm1(sys.M);
+  const double k_norm = detail::norm1(sys.K), m_norm = detail::norm1(sys.M);
   double kmax = 0;
   for (long i = 0; i < n; ++i) kmax = std::max(kmax, std::abs(sys.K.coeff(i, i)));
   Eigen::VectorXd Kz(n), Mz(n), za(n), scale_v(n), res_vec(n);

@@ -31,16 +31,7 @@ bool complete_spectrum_pays(const System& sys, std::size_t samples) {
   return sys.C.nonZeros() == 0 && samples >= 20 && sys.n() - sys.m() <= 600 && sys.n() <= 1500;
 }
 
-/// max over columns of sum |K_ij| (the matrix 1-norm, for normwise backward errors).
-double norm1(const SpMat& K) {
-  double best = 0;
-  for (int j = 0; j < K.outerSize(); ++j) {
-    double c = 0;
-    for (SpMat::InnerIterator it(K, j); it; ++it) c += std::abs(it.value());
-    best = std::max(best, c);
-  }
-  return best;
-}
+using detail::norm1;
 
 ModeOptions mode_options(const ResolvedOptions& o, int modes) {
   ModeOptions mo;

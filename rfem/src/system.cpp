@@ -329,6 +329,29 @@ void rigid_candidates(const Model& m, std::vector<Eigen::VectorXd>& cand, std::v
 }
 }  // namespace
 
+namespace {
+/// Adds each coupling block's deformation under the candidate motions to A'A (normalized by the
+/// block's norm and the length scale, like the SDE rows).
+template <class Mat>
+void add_coupling_deformation(const Model& m, const std::vector<Eigen::VectorXd>& cand, Mat& AtA) {
+  const double L = m.length_scale;
+  const long nc = static_cast<long>(cand.size());
+  const Eigen::MatrixXd* last = nullptr;  // couplings of a regular grid share their block
+  double nk = 0;
+  Eigen::MatrixXd V, F;
+  for (const Coupling& cp : m.couplings) {
+    if (cp.stiffness.get() != last) last = cp.stiffness.get(), nk = last->norm();
+    if (nk == 0) continue;
+    V.resize(6 * static_cast<long>(cp.elements.size()), nc);
+    for (long j = 0; j < nc; ++j)
+      for (std::size_t i = 0; i < cp.elements.size(); ++i)
+        V.block<6, 1>(6 * static_cast<long>(i), j) = body_vector(m, cand[static_cast<std::size_t>(j)], cp.elements[i]);
+    F.noalias() = *last * V;
+    AtA.noalias() += (L / nk) * (L / nk) * (F.transpose() * F);
+  }
+}
+}  // namespace
+
 RigidModes free_rigid_modes(const Model& m, const System& sys) {
   const double L = m.length_scale;
   const long nq = m.body_dofs();
@@ -353,19 +376,7 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
       AtA.noalias() += r.transpose() * r;
     }
   }
-  const Eigen::MatrixXd* last = nullptr;  // couplings of a regular grid share their block
-  double nk = 0;
-  Eigen::MatrixXd V, F;
-  for (const Coupling& cp : m.couplings) {
-    if (cp.stiffness.get() != last) last = cp.stiffness.get(), nk = last->norm();
-    if (nk == 0) continue;
-    V.resize(6 * static_cast<long>(cp.elements.size()), nc);
-    for (long j = 0; j < nc; ++j)
-      for (std::size_t i = 0; i < cp.elements.size(); ++i)
-        V.block<6, 1>(6 * static_cast<long>(i), j) = body_vector(m, cand[static_cast<std::size_t>(j)], cp.elements[i]);
-    F.noalias() = *last * V;
-    AtA.noalias() += (L / nk) * (L / nk) * (F.transpose() * F);
-  }
+  add_coupling_deformation(m, cand, AtA);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(AtA)};
   if (es.info() != Eigen::Success)
     throw std::runtime_error("rfem: the eigensolver of the rigid-motion test failed (no convergence)");
@@ -431,19 +442,7 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     }
   }
   if (!any_ground) return out;
-  const Eigen::MatrixXd* last = nullptr;
-  double nk = 0;
-  Eigen::MatrixXd V, F;
-  for (const Coupling& cp : m.couplings) {
-    if (cp.stiffness.get() != last) last = cp.stiffness.get(), nk = last->norm();
-    if (nk == 0) continue;
-    V.resize(6 * static_cast<long>(cp.elements.size()), nc);
-    for (long j = 0; j < nc; ++j)
-      for (std::size_t i = 0; i < cp.elements.size(); ++i)
-        V.block<6, 1>(6 * static_cast<long>(i), j) = body_vector(m, cand[static_cast<std::size_t>(j)], cp.elements[i]);
-    F.noalias() = *last * V;
-    internal.noalias() += (L / nk) * (L / nk) * (F.transpose() * F);
-  }
+  add_coupling_deformation(m, cand, internal);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(internal);
   if (es.info() != Eigen::Success) return out;
   // Combinations that deform nothing inside, representable over z (not held by a rigid support).

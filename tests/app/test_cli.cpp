@@ -19,8 +19,8 @@ struct Run {
   std::string out;  // stdout and stderr together
 };
 
-Run run(const std::string& args, bool merge_stderr = true) {
-  const std::string cmd = std::string(MODALBENCH_EXE) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+/// Runs a shell command line; its stdout (and whatever it redirects there) and exit status.
+Run run_command(const std::string& cmd) {
   FILE* p = popen(cmd.c_str(), "r");
   BOOST_REQUIRE(p);
   std::string out;
@@ -29,6 +29,10 @@ Run run(const std::string& args, bool merge_stderr = true) {
   while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
   const int st = pclose(p);
   return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+Run run(const std::string& args, bool merge_stderr = true) {
+  return run_command(std::string(MODALBENCH_EXE) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null"));
 }
 
 std::string scene(const char* f) { return std::string(MODALBENCH_SCENES_DIR) + "/" + f; }
@@ -150,15 +154,7 @@ BOOST_AUTO_TEST_CASE(compare_writes_a_report) {
 // FRF, and OpenBLAS spun forever on a failed buffer allocation, with 2 GB and less).
 BOOST_AUTO_TEST_CASE(short_of_memory_is_resource_limit_never_a_crash) {
   auto limited = [](const std::string& kb, const std::string& args) {
-    const std::string cmd = "ulimit -v " + kb + "; exec " + std::string(MODALBENCH_EXE) + " " + args + " 2>/dev/null";
-    FILE* p = popen(("sh -c '" + cmd + "'").c_str(), "r");
-    BOOST_REQUIRE(p);
-    std::string out;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-    const int st = pclose(p);
-    return Run{WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+    return run_command("sh -c 'ulimit -v " + kb + "; exec " + std::string(MODALBENCH_EXE) + " " + args + " 2>/dev/null'");
   };
   const std::string beam = scene("paper_fixed_beam.toml");
   // The estimate (0.68 GB for 200,000 segments with the FRF) exceeds what 0.7 GB of address space
