@@ -368,12 +368,12 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
         coarse = CoarserMesh{*f, static_cast<double>(f->counts[0]) / mesh.counts[0], mesh_order(scene, opt)};
         check_is_finer = true;
       }
+    Scene light = scene;  // what the error estimate needs: modes and statics
+    light.request.frf.reset();
+    light.request.shapes.reset();
     ResourceEstimate est = estimate(scene, mesh, opt);
     if (coarse) {
-      Scene cs = scene;
-      cs.request.frf.reset();
-      cs.request.shapes.reset();
-      const ResourceEstimate ce = estimate(cs, coarse->mesh, opt);
+      const ResourceEstimate ce = estimate(light, coarse->mesh, opt);
       est.bytes = std::max(est.bytes, ce.bytes);
       est.seconds += ce.seconds;
     }
@@ -395,9 +395,6 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
       sum.total_time_s = std::chrono::duration<double>(clock::now() - t0).count();
       return result;
     }
-    Scene light = scene;  // what the error estimate needs: modes and statics
-    light.request.frf.reset();
-    light.request.shapes.reset();
     auto run = [&](const Scene& sc, const Discretization& m) {
       const auto ts = clock::now();
       Result x;
