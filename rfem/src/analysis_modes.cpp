@@ -312,11 +312,20 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
   std::vector<char> near_rigid(static_cast<std::size_t>(out.lambda.size()), 0);
   {
     const NearRigid near = near_rigid_modes(model, sys);
-    const long q = near.lambda.size();
+    // The near-rigid cluster: the largest q such that the q lowest Rayleigh-Ritz pairs lie below
+    // 1e-6 of the solve's eigenvalue after them, and the solve's own q values there are in the
+    // rounding of it too. Pairs held by stiff springs (a heave on a 1e19 N/m spring) are elastic
+    // modes, not near-rigid ones, and stay with the solve.
+    long q = 0;
+    for (long c = near.lambda.size(); c > 0 && q == 0; --c) {
+      if (nr + c >= out.lambda.size() || !(near.lambda[c - 1] < 1e-6 * out.lambda[nr + c])) continue;
+      bool small = true;
+      for (long i = 0; small && i < c; ++i) small = std::abs(out.lambda[nr + i]) < 1e-4 * out.lambda[nr + c];
+      if (small) q = c;
+    }
     const long first_elastic = nr + q;
-    // The whole cluster or nothing: the solve's values there must be near-rigid too.
-    bool cluster = q > 0 && first_elastic < out.lambda.size() && near.lambda[q - 1] < 1e-6 * out.lambda[first_elastic];
-    for (long i = 0; cluster && i < q; ++i) cluster = std::abs(out.lambda[nr + i]) < 1e-4 * out.lambda[first_elastic];
+    // The whole cluster or nothing.
+    bool cluster = q > 0;
     // And only when each pair is known to 1e-5 (relative eigenvalue): Kato-Temple, the residual's
     // M^-1 norm squared over the gap to the first elastic eigenvalue. Otherwise the solve's own
     // pairs stay (and its checks, and the dense fall-back, decide).

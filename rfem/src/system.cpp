@@ -424,24 +424,29 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
   if (nc == 0) return out;
   // Internal deformation (SDEs between elements, couplings), as in free_rigid_modes, and the
   // energy of the finite springs to ground; a spring to ground that is rigid is a held support.
-  Eigen::MatrixXd internal = Eigen::MatrixXd::Zero(nc, nc), ground = Eigen::MatrixXd::Zero(nc, nc);
+  // The ground springs are kept as rows sqrt(k) d' (d: the spring's deformation under each
+  // candidate), not summed into d k d': springs of 1e19 and 1 N/m on one beam (pinned at one end
+  // by the stiff one, rocking on the soft one) leave the soft pair in the rounding of the sum.
+  Eigen::MatrixXd internal = Eigen::MatrixXd::Zero(nc, nc);
+  std::vector<Eigen::RowVectorXd> ground_rows, ground_shape;
   Eigen::MatrixXd def(6, nc);
-  bool any_ground = false;
   for (const Sde& sd : m.sdes) {
     for (long j = 0; j < nc; ++j) def.col(j) = deformation(m, sd, cand[static_cast<std::size_t>(j)]);
     for (int c = 0; c < 6; ++c) {
       const double k = sd.stiffness[c];
       if (k == 0) continue;
       if (sd.b == kGround && std::isfinite(k)) {
-        ground.noalias() += k * def.row(c).transpose() * def.row(c);
-        any_ground = true;
+        if (def.row(c).squaredNorm() > 0) {
+          ground_rows.push_back(std::sqrt(k) * def.row(c));
+          ground_shape.push_back(def.row(c) * (c < 3 ? 1.0 : L));
+        }
       } else if (sd.b != kGround) {
         const Eigen::RowVectorXd r = def.row(c) * (c < 3 ? 1.0 : L);
         internal.noalias() += r.transpose() * r;
       }
     }
   }
-  if (!any_ground) return out;
+  if (ground_rows.empty()) return out;
   add_coupling_deformation(m, cand, internal);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(internal);
   if (es.info() != Eigen::Success) return out;
@@ -460,26 +465,64 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     zs.push_back(z);
     coef.push_back(nv);
   }
-  const long r = static_cast<long>(zs.size());
+  long r = static_cast<long>(zs.size());
   if (r == 0) return out;
   Eigen::MatrixXd Z(sys.n(), r), C(nc, r);
   for (long i = 0; i < r; ++i) {
     Z.col(i) = zs[static_cast<std::size_t>(i)];
     C.col(i) = coef[static_cast<std::size_t>(i)];
   }
-  const Eigen::MatrixXd Kr = C.transpose() * ground * C, Mr = Z.transpose() * (sys.M * Z);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> g(0.5 * (Kr + Kr.transpose()), 0.5 * (Mr + Mr.transpose()));
-  if (g.info() != Eigen::Success) return out;
-  // Zero eigenvalues are the free rigid modes (free_rigid_modes); the positive ones are near-rigid.
+  // Rayleigh-Ritz: K_r = B' B with B = [sqrt(k) d'] C, M_r = U' U. The eigenvalues of K_r c =
+  // lambda M_r c are the squared singular values of B U^-1, taken by a QR with full pivoting on
+  // the rows sorted by decreasing norm, then Jacobi: a row-graded matrix keeps its small singular
+  // values to relative accuracy that way (Demmel and Veselic; Cox and Higham), where forming
+  // B' B would lose every one below eps times the largest.
+  // The free rigid motions (no spring deformed at all: free_rigid_modes' structural test, without
+  // the stiffnesses) are left out first, so every singular value below is a near-rigid pair's,
+  // however small the soft springs are against the stiff ones.
+  {
+    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(r, r);
+    for (const Eigen::RowVectorXd& g : ground_shape) {
+      const Eigen::RowVectorXd gc = g * C;
+      W.noalias() += gc.transpose() * gc;
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ws(W);
+    if (ws.info() != Eigen::Success) return out;
+    std::vector<long> held;
+    for (long i = 0; i < r; ++i)
+      if (std::sqrt(std::max(0.0, ws.eigenvalues()[i])) > 1e-9) held.push_back(i);
+    if (held.empty()) return out;
+    Eigen::MatrixXd E(r, static_cast<long>(held.size()));
+    for (std::size_t i = 0; i < held.size(); ++i) E.col(static_cast<long>(i)) = ws.eigenvectors().col(held[i]);
+    C = C * E;
+    Z = Z * E;
+    r = static_cast<long>(held.size());
+  }
+  const Eigen::MatrixXd Mr = Z.transpose() * (sys.M * Z);
+  const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (Mr + Mr.transpose()));
+  if (llt.info() != Eigen::Success) return out;
+  const Eigen::MatrixXd Uinv = llt.matrixU().solve(Eigen::MatrixXd::Identity(r, r));
+  std::vector<Eigen::RowVectorXd> rows;
+  rows.reserve(ground_rows.size());
+  for (const Eigen::RowVectorXd& g : ground_rows) rows.push_back(g * C * Uinv);
+  std::sort(rows.begin(), rows.end(), [](const Eigen::RowVectorXd& a, const Eigen::RowVectorXd& b) {
+    return a.squaredNorm() > b.squaredNorm();
+  });
+  Eigen::MatrixXd B(static_cast<long>(std::max<std::size_t>(rows.size(), static_cast<std::size_t>(r))), r);
+  B.setZero();
+  for (std::size_t i = 0; i < rows.size(); ++i) B.row(static_cast<long>(i)) = rows[i];
+  const Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(B, Eigen::ComputeFullV);
+  if (svd.info() != Eigen::Success) return out;
+  // Ascending (the SVD's order is descending).
+  const Eigen::VectorXd& sv = svd.singularValues();
   std::vector<long> keep;
-  const double scale = std::max(g.eigenvalues().cwiseAbs().maxCoeff(), 1e-300);
-  for (long i = 0; i < r; ++i)
-    if (g.eigenvalues()[i] > 1e-12 * scale) keep.push_back(i);
+  for (long i = r - 1; i >= 0; --i)
+    if (sv[i] > 0) keep.push_back(i);
   out.lambda.resize(static_cast<long>(keep.size()));
   out.Z.resize(sys.n(), static_cast<long>(keep.size()));
   for (std::size_t k = 0; k < keep.size(); ++k) {
-    out.lambda[static_cast<long>(k)] = g.eigenvalues()[keep[k]];
-    out.Z.col(static_cast<long>(k)) = Z * g.eigenvectors().col(keep[k]);  // M-orthonormal (Mr-normalized)
+    out.lambda[static_cast<long>(k)] = sv[keep[k]] * sv[keep[k]];
+    out.Z.col(static_cast<long>(k)) = Z * (Uinv * svd.matrixV().col(keep[k]));  // M-orthonormal
   }
   return out;
 }

@@ -112,6 +112,59 @@ BOOST_AUTO_TEST_CASE(near_rigid_modes_translational_springs_only) {
   BOOST_TEST(rel(f.frequencies_rad_s[1], rocking) < 1e-4);
 }
 
+// Fuzz finding (case 292): a cantilever clamped through finite springs, k = 1.19e17 N/m and
+// 3.3e12 N m/rad at xL (k L^3 / EI = 5.7e14), the other end on springs of 5e-6 N/m. rfem gave
+// mode 1 6.5e-4 low at every mesh from 256 to 2048 segments: its saddle-point augmentation was
+// scaled by the mean diagonal of K, which the one stiff spring made 3000 times the typical entry.
+// Reference: the cantilever by hand, (beta_1 L)^2 sqrt(EI / (m L^4)) with beta_1 L = 1.8751040687
+// (the springs change it by less than 1e-12).
+BOOST_AUTO_TEST_CASE(stiff_spring_clamp_keeps_the_first_mode_of_rfem) {
+  const double L = 4.0, b = 0.1, h = 0.02, E = 200e9, rho = 7850;
+  Scene s = eb_beam(L, b, h, E, rho, springs(5.0387e-6, 3.3333e-3), springs(1.1878967579705934e17, 3.3333e12));
+  s.request.modes = 3;
+  const double EI = E * b * h * h * h / 12, m = rho * b * h;
+  const double bl = 1.8751040687119611, w1 = bl * bl * std::sqrt(EI / (m * L * L * L * L));
+  for (const char* mesh : {"512", "2048"}) {
+    BOOST_TEST_CONTEXT("mesh " << mesh) {
+      const Result f = run("rfem", s, mesh);
+      BOOST_TEST(f.ok(), f.summary.message);
+      BOOST_REQUIRE(!f.frequencies_rad_s.empty());
+      // The discretization error of 512 segments is 2e-6 here; the stiff spring cost 6.5e-4.
+      BOOST_TEST(rel(f.frequencies_rad_s[0], w1) < 1e-5);
+    }
+  }
+}
+
+// Fuzz finding (case 1694): a Timoshenko beam pinned at xL by a finite spring of 8.1e18 N/m,
+// held at x0 by 1.93 N/m only. Its first mode is the rigid rocking about xL, omega^2 = k0 L^2 /
+// J_L with J_L = rho A L^3 / 3 + rho I L (by hand; the elastic correction is of relative order
+// 1e-9). rfem's Rayleigh-Ritz of the rigid subspace summed k d d' over the springs, so the soft
+// pair was lost in the rounding of the stiff one: Lanczos' value, 1.9 % off at 512 segments,
+// stayed, with success.
+BOOST_AUTO_TEST_CASE(near_rigid_mode_beside_a_stiff_spring) {
+  const double L = 1.0, a = 0.25, E = 200e9, rho = 8000, k0 = 1.9251168076452398;
+  Scene s = eb_beam(L, a, a, E, rho, springs(k0, 0.0), springs(8.091543171622538e18, 0.0));
+  s.theory = Theory::Timoshenko;
+  s.material.kappa = 0.85;
+  s.request.modes = 3;
+  validate(s);
+  const double A = a * a, I = a * a * a * a / 12;
+  const double rocking = std::sqrt(k0 * L * L / (rho * A * L * L * L / 3 + rho * I * L));
+  const Result e = run("exact", s);
+  BOOST_TEST(e.ok(), e.summary.message);
+  BOOST_REQUIRE(!e.frequencies_rad_s.empty());
+  BOOST_TEST(rel(e.frequencies_rad_s[0], rocking) < 1e-8);
+  for (const char* mesh : {"512", "1024"}) {
+    BOOST_TEST_CONTEXT("mesh " << mesh) {
+      const Result f = run("rfem", s, mesh);
+      BOOST_REQUIRE(!f.frequencies_rad_s.empty());
+      // The lumped rotary inertia of the rigid rotation is exact to O(1/n^2).
+      BOOST_TEST(rel(f.frequencies_rad_s[0], rocking) < 1e-5);
+      BOOST_TEST(f.summary.diagnostic("near_rigid_frequency_error_bound") < 1e-5);
+    }
+  }
+}
+
 // A free-free beam keeps exactly two rigid-body modes at 0 (and nothing else is rounded to 0).
 BOOST_AUTO_TEST_CASE(free_free_beam_keeps_its_two_rigid_modes) {
   Scene s = eb_beam(1.0, 0.1, 0.1, 210e9, 7850, Support::named("free"), Support::named("free"));
