@@ -106,9 +106,15 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   j["timing_s"] = {{"build", t.build}, {"modes", t.modes}, {"statics", t.statics}, {"frf", t.frf},
                    {"error_estimate", t.error_estimate}, {"total", r.summary.total_time_s}};
   const auto& ee = r.summary.error_estimate;
-  j["error_estimate"] = {{"frequencies", num(ee.frequencies)}, {"deflections", num(ee.deflections)},
-                         {"tolerance", num(ee.tolerance)},     {"coarse_mesh", ee.coarse_mesh},
-                         {"ratio", num(ee.ratio)},             {"order", num(ee.order)},
+  j["error_estimate"] = {{"frequencies", num(ee.frequencies)},
+                         {"deflections", num(ee.deflections)},
+                         {"frequencies_solve", num(ee.frequencies_solve)},
+                         {"tolerance", num(ee.tolerance)},
+                         {"coarse_mesh", ee.coarse_mesh},
+                         {"coarser_mesh", ee.coarser_mesh},
+                         {"ratio", num(ee.ratio)},
+                         {"order", num(ee.order)},
+                         {"safety_factor", num(ee.safety_factor)},
                          {"note", ee.note}};
   json diag = json::object();
   for (const auto& [name, v] : r.summary.diagnostics) diag[name] = num(v);

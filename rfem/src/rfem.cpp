@@ -173,6 +173,10 @@ std::vector<OptionSpec> RfemSolver::option_specs() const {
       {"frf_modes", T::Integer, "0", {}, 0, 1e6,
        "0: FRF by direct solves (or the complete spectral decomposition of small models); N > 0: modal "
        "superposition over N modes (truncated: an approximation)"},
+      {"frf_method", T::Choice, "auto", {"auto", "direct", "projected"}, 0, 0,
+       "FRF without frf_modes: direct (one sparse solve per frequency), projected (modes below twice the top "
+       "frequency plus load-dependent Ritz vectors, each sample's error bounded, those over the tolerance (at most 0.05 dB) solved "
+       "directly), or auto (projected from 20 samples)"},
       {"beam_rigid_shear", T::Choice, "multipliers", {"multipliers", "joint-coordinates"}, 0, 0,
        "Euler-Bernoulli beams: rigid shear springs as constraints with multipliers, or by joint coordinates"},
       {"plate_rigid_shear", T::Choice, "corner-coordinates", {"corner-coordinates", "multipliers"}, 0, 0,
@@ -280,6 +284,25 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
                   fmt::format("near-rigid modes: their Rayleigh-Ritz frequencies are only known to {:.2g} (Kato-Temple "
                               "bound), above 1 % of the tolerance {:.2g}", bound, s.request.tolerance));
     }
+    // The solve's own bound on the frequencies (rounding; half the eigenvalues' relative bound),
+    // worst over the modes reported: part of the error estimate, and past the tolerance a
+    // numerical issue (a finer mesh makes it worse).
+    {
+      double worst = 0;
+      long worst_mode = 0;
+      for (long i = 0; i < shown && i < static_cast<long>(md.forward_bounds.size()); ++i)
+        if (0.5 * md.forward_bounds[static_cast<std::size_t>(i)] > worst)
+          worst = 0.5 * md.forward_bounds[static_cast<std::size_t>(i)], worst_mode = i + 1;
+      const double bound = std::max(worst, 0.5 * md.near_rigid_bound);
+      sum.set_diagnostic("frequency_solve_error_bound", bound);
+      if (worst > s.request.tolerance)
+        sum.raise(Status::NumericalIssue,
+                  fmt::format("mode {}: its frequency is only known to {:.2g} (rounding: eigen backward error plus eps, "
+                              "times the mode's componentwise condition), above the tolerance {:.2g}; the condition "
+                              "grows with the mesh (stiff springs, or shear stiffness far above bending on a slender "
+                              "beam): a coarser mesh is more accurate here",
+                              worst_mode, worst, s.request.tolerance));
+    }
     if (!md.converged) sum.raise(Status::NotConverged, "eigen solve not converged: see warnings");
     else if (md.max_backward_error > 1e-8)
       sum.raise(Status::NumericalIssue, fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g})",
@@ -297,7 +320,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
 
   if (s.request.frf) {
     t0 = Clock::now();
-    method += "; FRF: " + solve_frf(s, model, sys, modal_frf ? &md : nullptr, frf_modes, r);
+    method += "; FRF: " + solve_frf(s, model, sys, modal_frf ? &md : nullptr, frf_modes, opt, r);
     sum.timings_s.frf += since(t0);
   }
   sum.method = method;
@@ -356,7 +379,7 @@ void RfemSolver::solve_statics(const Scene& s, const Model& model, const System&
 }
 
 std::string RfemSolver::solve_frf(const Scene& s, const Model& model, const System& sys, const Modes* modes,
-                                  int frf_modes, Result& r) {
+                                  int frf_modes, const ResolvedOptions& options, Result& r) {
   auto& sum = r.summary;
   const auto& fr = *s.request.frf;
   std::vector<double> omegas;
@@ -394,7 +417,24 @@ std::string RfemSolver::solve_frf(const Scene& s, const Model& model, const Syst
       res = frf_direct(model, sys, f, g, omegas);
     }
   } else {
-    res = frf_direct(model, sys, f, g, omegas);
+    // Many frequencies: the projection with its per-sample error bound (samples that miss the
+    // target solved directly), about one eigen solve for the whole sweep; else one solve each.
+    const std::string& how = options.get_choice("frf_method");
+    bool done = false;
+    if (how == "projected" || (how == "auto" && omegas.size() >= 20)) {
+      ProjectedFrfOptions po;
+      po.modes = mode_options(options, 0);
+      po.target = std::clamp(s.request.tolerance, 1e-10, 5.8e-3);  // 5.8e-3: 0.05 dB
+      done = frf_projected(model, sys, f, g, omegas, po, res);
+      if (done) {
+        sum.set_diagnostic("frf_error_bound", res.max_error_bound);
+        sum.set_diagnostic("frf_direct_samples", static_cast<double>(res.direct_samples));
+      }
+      else if (how == "projected")
+        sum.fallbacks.push_back("FRF: the projection does not apply (viscous dampers, more than 400 modes below twice "
+                                "the top frequency, or a failed factorization): one solve per frequency instead");
+    }
+    if (!done) res = frf_direct(model, sys, f, g, omegas);
   }
   if (!std::isfinite(singular))
     sum.raise(Status::NumericalIssue,

@@ -48,7 +48,7 @@ XC_CONTRA_NOEST = "contradiction (no estimate)"
 XC_KINDS = [XC_REFUSAL, XC_CONTRA, XC_CONTRA_NOEST]
 NO_ESTIMATE_TOL = 5e-2
 DTFM_MULTIPRISM_TOL = 0.10
-ESTIMATE_SAFETY = 1.25  # tolerance = 1.25 x (sum of the two results' own error estimates)
+ESTIMATE_SAFETY = 1.0  # the estimates are grid convergence indices (factors of safety inside): tolerance = their sum
 LOW_MODES = 6  # contradictions among the first LOW_MODES paired modes are reported apart
 
 

@@ -85,14 +85,29 @@ struct PhaseTimes {
 
 inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 
-/// A meshed result's own estimate of its discretization error: the same request on a coarser mesh
-/// of the same family, Richardson with the family's order. Relative figures; NaN where not made.
+/// A meshed result's own estimate of its discretization error: the same request on coarser meshes
+/// of the same family. Relative figures; NaN where not made.
+///
+/// Per quantity q (each nonzero mode, each probe), with h the mesh judged, H = r h the coarser one
+/// and, where the family has it, 2H = r' H the next coarser:
+///   e1 = |q_h - q_H| / (r^p - 1)                      (Richardson on the finest pair)
+///   e2 = |q_H - q_2H| / (r'^p - 1) / r^p              (the coarser pair's estimate, carried to h)
+///   estimate = max(3 e1, 1.25 e2) + the solve's own error bound
+/// 3 is Roache's factor of safety for a two-mesh estimate with the formal order p (a grid
+/// convergence index), 1.25 his factor where a third mesh backs it. The guard e2 is there because
+/// errors that change sign between meshes (two error terms of opposite signs: a Mindlin plate at
+/// 20 and 40 fragments) make one pair's difference accidentally small. The solve's bound is the back-end's own (the diagnostic
+/// `frequency_solve_error_bound`, e.g. from the eigen residuals): rounding, which refinement does
+/// not reduce and Richardson does not see.
 struct ErrorEstimate {
-  double frequencies = kNotMeasured;   ///< max over paired nonzero modes of |f_h - f_H| / (r^p - 1) / f_h
-  double deflections = kNotMeasured;   ///< max over probes of |w_h - w_H| / (r^p - 1) / max |w_h|
+  double frequencies = kNotMeasured;   ///< max over paired nonzero modes of the estimate above, relative to f_h
+  double deflections = kNotMeasured;   ///< max over probes, relative to max |w_h|
+  double frequencies_solve = kNotMeasured;  ///< the solve's own bound included in `frequencies` (NaN: none given)
   double tolerance = kNotMeasured;     ///< the scene's request.tolerance it was judged against
   std::string coarse_mesh;            ///< the mesh it was checked against ("" when none)
+  std::string coarser_mesh;           ///< the third mesh, 2H ("" when the family has none)
   double ratio = kNotMeasured, order = kNotMeasured;
+  double safety_factor = kNotMeasured;  ///< the factor of the finest pair (3)
   std::string note;                   ///< how it was made, or why none was
 };
 

@@ -24,6 +24,7 @@
 // (direct), or by modal superposition over a stated number of modes.
 
 #include <complex>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,11 @@ struct Modes {
   long sturm_count = -1;           ///< eigenvalues below the check point; -1 if not checked
   double max_residual = 0;
   double max_backward_error = 0;
+  /// First-order bound on each mode's relative eigenvalue error from the solve (rounding):
+  /// (backward error + eps) x componentwise condition; 0 for rigid modes, near-rigid ones excluded
+  /// (near_rigid_bound).
+  std::vector<double> forward_bounds;
+  double max_forward_bound = 0;
   /// Near-rigid pairs (Rayleigh-Ritz in the rigid subspace): largest Kato-Temple bound on their
   /// relative eigenvalue error (0 when there are none).
   double near_rigid_bound = 0;
@@ -89,10 +95,33 @@ struct FrfResult {
   long skipped = 0;                               ///< singular samples (on a natural frequency, w = 0 of a free body)
   std::string method;
   double factor_seconds = 0;
+  /// frf_projected: the largest bound on |H - H_direct| / |H| over the samples it kept (NaN: none
+  /// made), and how many samples it solved directly because their bound missed the target.
+  double max_error_bound = std::numeric_limits<double>::quiet_NaN();
+  long direct_samples = 0;
+  std::vector<double> error_bounds;  ///< frf_projected: per sample kept, its bound (NaN: solved directly)
 };
 /// Direct: one sparse LU of the (saddle-point) dynamic stiffness per frequency.
 FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
                      const std::vector<double>& omegas);
+/// A sweep of many frequencies at about the cost of one eigen solve (issue 14): the Galerkin
+/// projection of K (1 + i eta) - w^2 M onto every mode below 2 w_max (their number from a Sturm
+/// count) and four load-dependent Ritz vectors (K - s M)^-1 (M (K - s M)^-1)^j f, s < 0, which
+/// carry the quasi-static response of the modes left out. Each sample's error is bounded from its
+/// residual r = D x - f: the projection is Galerkin, so r has no component on the modes kept, and
+/// |g' D^-1 r| <= ||g_out||_M^-1 ||r||_M^-1 / (sigma - w^2), where g_out is g less its part on the
+/// modes kept and sigma = (2 w_max)^2 bounds the first mode left out from below (Sturm). The
+/// residual norm is a small quadratic form per sample (r = (1 + i eta) S y - f_perp, with S the Ritz
+/// residuals), so the bound costs O(p^2) per sample. A sample whose bound exceeds `target` times
+/// |H| is solved directly. Viscous dampers (C != 0) are outside it: false, and `out` untouched,
+/// also when more than `max_modes` modes lie below 2 w_max or a factorization fails.
+struct ProjectedFrfOptions {
+  double target = 1e-4;  ///< relative bound on |H - H_direct| a sample must meet
+  long max_modes = 400;
+  ModeOptions modes;     ///< eigensolver options (modes is set here)
+};
+bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
+                   const std::vector<double>& omegas, const ProjectedFrfOptions& options, FrfResult& out);
 /// Modal superposition over the given modes (all of `modes`).
 FrfResult frf_modal(const Model& model, const System& sys, const Modes& modes, const Eigen::VectorXd& f,
                     const Eigen::VectorXd& g, const std::vector<double>& omegas);

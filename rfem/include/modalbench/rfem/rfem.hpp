@@ -76,7 +76,7 @@ class RfemSolver final : public Solver {
   static void solve_statics(const Scene& s, const Model& model, const System& sys, Result& r);
   /// Fills r.frf; returns the method used. `modes`: modal superposition over them (null: direct).
   static std::string solve_frf(const Scene& s, const Model& model, const System& sys, const Modes* modes,
-                               int frf_modes, Result& r);
+                               int frf_modes, const ResolvedOptions& options, Result& r);
 };
 
 }  // namespace modalbench::rfem
