@@ -329,17 +329,41 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
     // And only when each pair is known to 1e-5 (relative eigenvalue): Kato-Temple, the residual's
     // M^-1 norm squared over the gap to the first elastic eigenvalue. Otherwise the solve's own
     // pairs stay (and its checks, and the dense fall-back, decide).
+    //
+    // Springs to ground so stiff that they act on these pairs as supports (alone on the mass they
+    // carry, an eigenvalue 1e6 times the first elastic one: a 1e19 N/m pin beside a 1 N/m spring)
+    // are taken as constraints in the bound: their forces in K z are reactions (K z would carry
+    // k times the rounding of z there, a residual of rounding alone), projected out like the
+    // multipliers' forces; their compliance then lowers the eigenvalue by at most sum R^2 / k
+    // (R: the reaction), added to the bound.
     double worst_bound = 0;
     if (cluster) {
       Eigen::SimplicialLDLT<SpMat> m_solver(sys.M);
       const ConstraintProjector Pc(sys.G);
+      std::vector<const NearRigid::GroundSpring*> stiff;
+      if (m_solver.info() == Eigen::Success)
+        for (const auto& sp : near.springs)
+          if (sp.k * sp.row.dot(m_solver.solve(sp.row)) >= 1e6 * out.lambda[first_elastic]) stiff.push_back(&sp);
+      const long ns = static_cast<long>(stiff.size());
+      Eigen::MatrixXd D(sys.n(), ns);
+      for (long j = 0; j < ns; ++j) D.col(j) = stiff[static_cast<std::size_t>(j)]->row;
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> dqr;
+      if (ns > 0) dqr.compute(D);
       for (long i = 0; i < q && cluster; ++i) {
         const Eigen::VectorXd zi = near.Z.col(i);
         Eigen::VectorXd res = sys.K * zi - near.lambda[i] * (sys.M * zi);
+        for (long j = 0; j < ns; ++j) res -= (stiff[static_cast<std::size_t>(j)]->k * D.col(j).dot(zi)) * D.col(j);
         if (m > 0) res = Pc(res);
+        double compliance = 0;
+        if (ns > 0) {
+          const Eigen::VectorXd reactions = dqr.solve(res);  // least squares
+          res -= D * reactions;
+          for (long j = 0; j < ns; ++j) compliance += reactions[j] * reactions[j] / stiff[static_cast<std::size_t>(j)]->k;
+        }
         const double gap = out.lambda[first_elastic] - near.lambda[i];
         const double bound = m_solver.info() == Eigen::Success
-                                 ? std::abs(res.dot(m_solver.solve(res))) / std::max(gap, 1e-300) / near.lambda[i]
+                                 ? std::abs(res.dot(m_solver.solve(res))) / std::max(gap, 1e-300) / near.lambda[i] +
+                                       compliance / near.lambda[i]
                                  : std::numeric_limits<double>::infinity();
         worst_bound = std::max(worst_bound, bound);
         cluster = bound <= 1e-5;

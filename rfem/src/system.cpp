@@ -524,6 +524,28 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     out.lambda[static_cast<long>(k)] = sv[keep[k]] * sv[keep[k]];
     out.Z.col(static_cast<long>(k)) = Z * (Uinv * svd.matrixV().col(keep[k]));  // M-orthonormal
   }
+  // The ground springs' deformation functionals over z (body DOFs of element a, then T').
+  if (!keep.empty()) {
+    const int na = m.dofs_per_element();
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(m.body_dofs());
+    for (const Sde& sd : m.sdes) {
+      if (sd.b != kGround) continue;
+      Eigen::Matrix<double, 6, Eigen::Dynamic> D(6, na);
+      for (int j = 0; j < na; ++j) {
+        const long idx = static_cast<long>(sd.a) * na + j;
+        q[idx] = 1.0;
+        D.col(j) = deformation(m, sd, q);
+        q[idx] = 0.0;
+      }
+      for (int c = 0; c < 6; ++c) {
+        const double k = sd.stiffness[c];
+        if (!(k > 0) || !std::isfinite(k) || D.row(c).squaredNorm() == 0) continue;
+        Eigen::VectorXd rq = Eigen::VectorXd::Zero(m.body_dofs());
+        for (int j = 0; j < na; ++j) rq[static_cast<long>(sd.a) * na + j] = D(c, j);
+        out.springs.push_back({k, sys.T.transpose() * rq});
+      }
+    }
+  }
   return out;
 }
 

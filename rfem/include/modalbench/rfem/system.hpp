@@ -84,6 +84,14 @@ RigidModes free_rigid_modes(const Model& model, const System& sys);
 struct NearRigid {
   Eigen::VectorXd lambda;  ///< ascending, > 0
   Eigen::MatrixXd Z;       ///< n x r over z, M-orthonormal
+  /// Each finite spring to ground (component), as k and its deformation functional over z: the
+  /// caller treats the stiff ones as constraints when it bounds the pairs' errors (filled only
+  /// when there are near-rigid pairs).
+  struct GroundSpring {
+    double k = 0;
+    Eigen::VectorXd row;
+  };
+  std::vector<GroundSpring> springs;
 };
 NearRigid near_rigid_modes(const Model& model, const System& sys);
 
