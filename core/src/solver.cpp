@@ -508,12 +508,23 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
           break;
         }
         const double ratio = static_cast<double>(next->counts[0]) / final_mesh.counts[0];
+        Result trial = run(light, *next);
+        // A finer mesh whose solve fails the back-end's own checks is not taken: the mesh kept is
+        // the last one that passed them, with its estimate (and its not-converged verdict).
+        if (severity(trial.summary.status) >= severity(Status::NumericalIssue) &&
+            severity(cur.summary.status) < severity(Status::NumericalIssue)) {
+          estimate_warnings.push_back(fmt::format("refinement stopped at mesh {}: the next, {}, failed the back-end's "
+                                                  "own checks ({}: {})",
+                                                  final_mesh.spec(), next->spec(), to_string(trial.summary.status),
+                                                  trial.summary.message));
+          break;
+        }
         r2 = std::move(prev);
         third = MeshSolve{prev_spec, ratio_prev, &r2};
         prev = std::move(cur);
         prev_spec = final_mesh.spec();
         ratio_prev = ratio;
-        cur = run(light, *next);
+        cur = std::move(trial);
         last_estimate = estimate(light, *next, opt).seconds;
         last_time = cur.summary.total_time_s;
         verdict = judge_discretization(scene, coarse->order, cur, MeshSolve{prev_spec, ratio, &prev}, third);
