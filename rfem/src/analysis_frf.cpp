@@ -155,13 +155,15 @@ bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd&
     V.col(p++) = v / after;
   }
   V.conservativeResize(n, p);
+  if (p == 0 || !V.allFinite()) return false;
   // Ritz pairs of the projected pencil (V' M V = I up to rounding: taken as a pencil anyway).
   const Eigen::MatrixXd KV = sys.K * V, MV = sys.M * V;
   Eigen::MatrixXd Kr = V.transpose() * KV, Mr = V.transpose() * MV;
   Kr = 0.5 * (Kr + Kr.transpose()).eval();
   Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  if (!Kr.allFinite() || !Mr.allFinite() || Eigen::LLT<Eigen::MatrixXd>(Mr).info() != Eigen::Success) return false;
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);
-  if (es.info() != Eigen::Success) return false;
+  if (es.info() != Eigen::Success || !es.eigenvalues().allFinite()) return false;
   const Eigen::VectorXd theta = es.eigenvalues();
   const Eigen::MatrixXd& Q = es.eigenvectors();  // Mr-orthonormal
   const Eigen::MatrixXd Y = V * Q;

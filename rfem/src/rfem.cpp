@@ -299,8 +299,8 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
         sum.raise(Status::NumericalIssue,
                   fmt::format("mode {}: its frequency is only known to {:.2g} (rounding: eigen backward error plus eps, "
                               "times the mode's componentwise condition), above the tolerance {:.2g}; the condition "
-                              "grows with the mesh (stiff springs, or shear stiffness far above bending on a slender "
-                              "beam): a coarser mesh is more accurate here",
+                              "grows with the mesh (e.g. stiff springs, a slender Timoshenko beam, nu near -1): a "
+                              "coarser mesh is more accurate here",
                               worst_mode, worst, s.request.tolerance));
     }
     if (!md.converged) sum.raise(Status::NotConverged, "eigen solve not converged: see warnings");
