@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <memory>
 
@@ -70,8 +71,13 @@ LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : mo
         const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(mc, mc);
         ce.B.leftCols(ce.n_free) = Nc;
         ce.B.rightCols(mc - ce.n_free) = Q.rightCols(mc - ce.n_free);
-        // Springs 1/2 a^T K a with q = N a, a = N^T q = N^T W Nc b.
-        const Eigen::MatrixXd G = end.N.transpose() * W * Nc;
+        // Springs 1/2 a^T K a with q = N a, a = N^T q = N^T W Nc b. An end motion outside this
+        // class projects to rounding (1e-17 of the map): zero it, or its spring would leak into
+        // the class squared and pass for a support of a motion the scene leaves free (a statics
+        // mechanism taken for a near-mechanism on a 1e-45 spring).
+        Eigen::MatrixXd G = end.N.transpose() * W * Nc;
+        const double g_floor = 64.0 * std::numeric_limits<double>::epsilon() * G.cwiseAbs().maxCoeff();
+        G = G.unaryExpr([g_floor](double g) { return std::abs(g) <= g_floor ? 0.0 : g; });
         ce.K = G.transpose() * end.K * G / sigma;
         ce.K = 0.5 * (ce.K + ce.K.transpose());
       } else {

@@ -2,6 +2,8 @@
 // Internal to the dtfm line analysis: a symmetry class as a scaled line problem, the assembled system.
 
 #include <Eigen/Dense>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "modalbench/dtfm/analysis.hpp"
@@ -45,6 +47,64 @@ struct AssemblyInfo {
   double log_poles = 0;    // sum of the segments' log |det Tdf|
   double min_pivot_rel = 1;
 };
+
+/// A polish stopped at the determinant's rounding floor (a repeated value) is accepted only when
+/// the counts bracket its root this tightly (relative): far below what the reproducibility check
+/// resolves (1e-4), far above the tolerance a polish normally meets (SolveControls::rel_tol).
+inline constexpr double kPolishFloor = 1e-8;
+
+/// Every eigenvalue in [lambda_lo, lambda_hi) of a problem whose `eval(lambda)` gives the count
+/// below lambda and log |det K(lambda)| (without poles), with multiplicity, ascending
+/// (analysis_slicing.cpp). As core's slice_interval_polished (bisection on the count until an
+/// interval holds one eigenvalue, Brent's method on the signed determinant), but every
+/// evaluation of the polish narrows its bracket by the count, and a polish that stops on a
+/// repeated determinant value with the root still loosely bracketed bisects on the count and
+/// polishes again instead of returning a point that may be no root (a 30 m plate's first mode
+/// came out as a bracket end, 1246.13 instead of 1244.7 rad/s). Throws std::runtime_error if
+/// the count is not monotonic.
+std::vector<double> slice_class(const std::function<CountDet(double)>& eval, double lambda_lo, double lambda_hi,
+                                double rel_tol, double abs_tol, SliceStats* stats = nullptr);
+
+/// The rigid-body motions of a class line without its supports, and the anchors that separate
+/// them from the elastic part (analysis_rigid.cpp), for static solves of near-mechanisms.
+///
+/// The class's rigid section motions V0 (its family motions) carried along x with zero section
+/// forces, d(x) = exp(-St x) V0, solve the static field equations exactly when Qt annihilates
+/// them (no layer deforms, nothing ties the line to the ground): K(0) times them is zero
+/// analytically. The ends' springs are made diagonal (the admissible end coordinates turned to
+/// their principal directions); the end coordinates are taken stiffest first (held ones first)
+/// and the first r with independent rows of the rigid motions become the anchors, the rigid basis
+/// having unit value at one anchor and zero at the others. The line is then d_i = Psi_i a + e_i
+/// with e = 0 at the anchors: the elastic part sees the line held at its anchors (positive
+/// definite), the amplitudes a see the springs only, and nothing is lost in the rounding of
+/// K_int + K_springs (a beam rocking on springs 1e-8 of EI / L^3 about a support of 1e12 EI / L^3).
+/// In anchor order the condensed r x r matrix is graded from the stiffest spring down.
+struct RigidLine {
+  LineAnalysis::ClassLine line;  ///< the class line with diagonal end springs (the coordinates solved)
+  Eigen::MatrixXd V0;            ///< mc x r: orthonormal rigid section motions at x = 0
+  Eigen::MatrixXd Rc;            ///< r x r: phi(x) = exp(-St x) V0 Rc is 1 at one anchor, 0 at the others
+  struct Anchor {
+    int end = 0, coord = 0;  ///< end (0: x = 0, 1: x = L) and its coordinate (column of line.ends[end].B)
+    double k = 0;            ///< its spring (inf: held; 0: none)
+  };
+  std::vector<Anchor> anchors;  ///< r of them, stiffest first
+  std::vector<int> free_a;      ///< amplitudes a spring restrains (not held), in anchor order
+  int unrestrained = 0;         ///< amplitudes no support reaches: a mechanism
+  double k_zero = 0;            ///< springs at or below this are none (0 unless an end was diagonalized)
+
+  /// Rigid basis in class coordinates at x (mc x r).
+  Eigen::MatrixXd phi(double x) const;
+  /// The same in a node's coordinates: end < 0 an interior node, else end node `end` (B coordinates).
+  Eigen::MatrixXd node_psi(double x, int end) const;
+  bool is_anchor(int end, int coord) const {
+    for (const auto& a : anchors)
+      if (a.end == end && a.coord == coord) return true;
+    return false;
+  }
+};
+/// The split of class line `c` on [0, length], or nothing where the class has no rigid motions of
+/// its own (plates; lines tied to the ground).
+std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double length);
 
 /// Field values (physical) at every node from a class solution d (nodes x mc, end nodes in B coordinates).
 template <class Vec>

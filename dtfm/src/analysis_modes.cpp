@@ -107,7 +107,7 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   if (rigid < k) {
     for (int c : cls) {
       SliceStats st;
-      const auto vals = slice_interval_polished(
+      const auto vals = detail::slice_class(
           [&](double lam) { return count_det(*lines_[c], lam, mesh[c]); }, delta, hi, ctl_.rel_tol, 1e-14 * scale, &st);
       for (double v : vals) all.push_back({v, c});
     }

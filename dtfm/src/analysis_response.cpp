@@ -83,6 +83,91 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> near_node(const LineAnalysis::ClassLine
   return (T * eta).head(mc);
 }
 
+/// LDL^T without pivoting in the given (graded, stiffest first) order; returns the pivots, NaN from
+/// the first zero or non-finite one on.
+Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S) {
+  const Eigen::Index r = S.rows();
+  Eigen::VectorXd d = Eigen::VectorXd::Constant(r, std::numeric_limits<double>::quiet_NaN());
+  for (Eigen::Index k = 0; k < r; ++k) {
+    if (S(k, k) == 0.0 || !std::isfinite(S(k, k))) return d;
+    d[k] = S(k, k);
+    for (Eigen::Index i = k + 1; i < r; ++i) S(i, k) /= d[k];
+    for (Eigen::Index i = k + 1; i < r; ++i)
+      for (Eigen::Index j = k + 1; j <= i; ++j) S(i, j) -= S(i, k) * d[k] * S(j, k);
+  }
+  return d;
+}
+
+/// K(0) d = f split into rigid amplitudes and the anchored elastic part (detail::RigidLine):
+///   [[E, B], [B^T, C]] [e; a] = [f; Psi^T f],  E = K_int + K_springs held at the anchors,
+///   B = K_springs Psi (non-anchor springs), C = Psi^T K_springs Psi,
+/// K_int Psi = 0 analytically and never formed. `K` is the assembled K(0) of rl.line (its anchors
+/// get held here); `e` the elastic nodal values, `a` the amplitudes. Throws std::runtime_error
+/// (numerical) if the elastic part is not positive definite or a condensed pivot is not resolved.
+void solve_split(const detail::RigidLine& rl, BlockTridiagonal& K, const std::vector<double>& x,
+                 const Eigen::VectorXd& f, Eigen::VectorXd& e, Eigen::VectorXd& a) {
+  const auto& c = rl.line;
+  const int nn = static_cast<int>(x.size()), mc = c.mc;
+  const Eigen::Index r = rl.V0.cols();
+  std::vector<Eigen::MatrixXd> psi(static_cast<std::size_t>(nn));
+  for (int i = 0; i < nn; ++i)
+    psi[static_cast<std::size_t>(i)] = rl.node_psi(x[static_cast<std::size_t>(i)], i == 0 ? 0 : (i == nn - 1 ? 1 : -1));
+  for (const auto& an : rl.anchors) K.hold(an.end == 0 ? 0 : nn - 1, an.coord);
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn) * mc, r);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(r, r);
+  for (int end = 0; end < 2; ++end) {
+    const int nd = end == 0 ? 0 : nn - 1;
+    const auto& ce = c.ends[end];
+    for (int j = 0; j < ce.n_free; ++j) {
+      const double k = ce.K(j, j);
+      if (!(k > rl.k_zero)) continue;
+      const Eigen::RowVectorXd p = psi[static_cast<std::size_t>(nd)].row(j);
+      C.noalias() += k * p.transpose() * p;
+      if (!rl.is_anchor(end, j)) B.row(static_cast<Eigen::Index>(nd) * mc + j) += k * p;
+    }
+  }
+  Eigen::VectorXd fa = Eigen::VectorXd::Zero(r);
+  for (int i = 0; i < nn; ++i)
+    fa += psi[static_cast<std::size_t>(i)].transpose() * f.segment(static_cast<Eigen::Index>(i) * mc, mc);
+  const BlockTridiagonal::Inertia in = K.inertia();
+  if (in.negative > 0 || in.zero > 0)
+    throw std::runtime_error(fmt::format(
+        "static solve of the {} family: the line held at its rigid-motion anchors is not positive definite "
+        "({} negative, {} zero pivots): its elastic part cannot be separated",
+        to_string(c.family), in.negative, in.zero));
+  const Eigen::VectorXd y = K.solve(f, 0.0);
+  const Eigen::Index rf = static_cast<Eigen::Index>(rl.free_a.size());
+  Eigen::MatrixXd Y(B.rows(), rf), S(rf, rf);
+  Eigen::VectorXd rhs(rf);
+  for (Eigen::Index q = 0; q < rf; ++q) Y.col(q) = K.solve(B.col(rl.free_a[static_cast<std::size_t>(q)]), 0.0);
+  for (Eigen::Index p = 0; p < rf; ++p) {
+    const int ap = rl.free_a[static_cast<std::size_t>(p)];
+    rhs[p] = fa[ap] - B.col(ap).dot(y);
+    for (Eigen::Index q = 0; q < rf; ++q)
+      S(p, q) = C(ap, rl.free_a[static_cast<std::size_t>(q)]) - B.col(ap).dot(Y.col(q));
+  }
+  const Eigen::VectorXd piv = graded_ldlt(S);
+  for (Eigen::Index k = 0; k < rf; ++k)
+    if (!std::isfinite(piv[k]) || !(piv[k] > 0))
+      throw std::runtime_error(fmt::format(
+          "static solve of the {} family: the stiffness of rigid-body motion {} of {} against its supports "
+          "(condensed pivot {:.3g}) is not resolved in double precision",
+          to_string(c.family), k + 1, rf, piv[k]));
+  // L D L^T a = rhs (unit lower L below the diagonal of S).
+  Eigen::VectorXd af = rhs;
+  for (Eigen::Index i = 0; i < rf; ++i)
+    for (Eigen::Index j = 0; j < i; ++j) af[i] -= S(i, j) * af[j];
+  for (Eigen::Index i = 0; i < rf; ++i) af[i] /= piv[i];
+  for (Eigen::Index i = rf; i-- > 0;)
+    for (Eigen::Index j = i + 1; j < rf; ++j) af[i] -= S(j, i) * af[j];
+  a = Eigen::VectorXd::Zero(r);
+  for (Eigen::Index p = 0; p < rf; ++p) a[rl.free_a[static_cast<std::size_t>(p)]] = af[p];
+  if (!a.allFinite())
+    throw std::runtime_error(fmt::format("static solve of the {} family: the rigid-body amplitudes overflow "
+                                         "(supports too soft for double precision)", to_string(c.family)));
+  e = y - Y * af;
+}
+
 }  // namespace
 
 std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& loads,
@@ -104,21 +189,29 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
     total_share += share[ci];
   }
   for (const auto& line : lines_) {
-    ClassLine& c = *line;
-    if (!(share[static_cast<std::size_t>(c.index)] > 1e-24 * total_share)) continue;
-    // A loaded class must be free of rigid-body motions (structurally, by its count just above
-    // zero): its static solve would otherwise give rounding noise divided by rounding noise.
-    {
+    ClassLine& c0 = *line;
+    if (!(share[static_cast<std::size_t>(c0.index)] > 1e-24 * total_share)) continue;
+    // A class with rigid motions of its own (beams) is solved split into them and its elastic part
+    // (detail::RigidLine): a mechanism is then a rigid motion no support reaches, structurally, and
+    // a near-mechanism keeps its digits however soft its springs.
+    const std::optional<detail::RigidLine> rl = detail::rigid_line(c0, model_.length);
+    if (rl && rl->unrestrained > 0)
+      throw std::runtime_error(fmt::format(
+          "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free ({} / {})",
+          rl->unrestrained, to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
+    if (!rl) {
+      // Otherwise a loaded class must be free of rigid-body motions by its count just above zero:
+      // its static solve would give rounding noise divided by rounding noise.
       const double delta = kRigidThreshold * model_.lambda_scale;
-      const Mesh near_zero = mesh_for(c, delta, {});
-      if (const int rigid = count_det(c, delta, near_zero).count; rigid > 0)
+      const Mesh near_zero = mesh_for(c0, delta, {});
+      if (const int rigid = count_det(c0, delta, near_zero).count; rigid > 0)
         throw std::runtime_error(fmt::format(
             "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free, or restrain them "
             "below 1e-10 of the model's stiffness scale, which dtfm cannot resolve ({} / {})",
-            rigid,
-            to_string(c.family), model_.ends[0].text, model_.ends[1].text));
+            rigid, to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
     }
-    const Mesh mesh = mesh_for(c, 0.0, required);
+    const ClassLine& c = rl ? rl->line : c0;
+    const Mesh mesh = mesh_for(c0, 0.0, required);
     const auto& x = mesh.x;
     const int nn = static_cast<int>(x.size());
     auto node = [&](double xx) {
@@ -134,18 +227,25 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       if (i == nn - 1) fc = c.ends[1].B.transpose() * fc;
       f.segment(static_cast<Eigen::Index>(i) * c.mc, c.mc) += fc;
     }
-    const Assembled a = assemble(c, 0.0, mesh);
-    Eigen::VectorXd d;
-    // Rigid motions were excluded above, structurally: a failure here is numerical, not the
-    // supports' (and no pivot-ratio test: a short piece is stiff, not singular).
-    try {
-      d = a.K.solve(f, 0.0);
-    } catch (const std::runtime_error& e) {
-      throw std::runtime_error(fmt::format("static solve of the {} family failed numerically: {}", to_string(c.family),
-                                           e.what()));
+    Assembled a = assemble(c, 0.0, mesh);
+    Eigen::VectorXd d, amp;  // d: nodal values (the elastic part when split), amp: rigid amplitudes
+    if (rl) {
+      solve_split(*rl, a.K, x, f, d, amp);
+    } else {
+      // Rigid motions were excluded above, structurally: a failure here is numerical, not the
+      // supports' (and no pivot-ratio test: a short piece is stiff, not singular).
+      try {
+        d = a.K.solve(f, 0.0);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(fmt::format("static solve of the {} family failed numerically: {}",
+                                             to_string(c.family), e.what()));
+      }
     }
     for (std::size_t j = 0; j < probes.size(); ++j) {
-      const Eigen::VectorXd dc = near_node<double>(c, 0.0, x, mesh.h_base, d, node(at[j].anchor), at[j].t);
+      // The elastic field from its nodal values (its section forces are those of the whole
+      // solution: K(0) times a rigid motion is zero), the rigid motions exactly.
+      Eigen::VectorXd dc = near_node<double>(c, 0.0, x, mesh.h_base, d, node(at[j].anchor), at[j].t);
+      if (rl) dc += rl->phi(std::clamp(probes[j][0], 0.0, model_.length)) * amp;
       qp[j] += c.W * dc;
     }
   }

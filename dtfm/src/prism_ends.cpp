@@ -1,6 +1,7 @@
 // End conditions of the prism model: admissible end motions and end springs (make_end).
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,12 @@ EndCondition make_end(const Eigen::MatrixXd& T, const std::vector<double>& k, bo
   // Tf = N R (thin QR): a = R r, springs 1/2 r^T diag(k) r = 1/2 a^T R^-T diag(k) R^-1 a.
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(Tf);
   e.N = qr.householderQ() * Eigen::MatrixXd::Identity(m, Tf.cols());
-  const Eigen::MatrixXd R = e.N.transpose() * Tf;
+  // Entries of R at the rounding of the QR (columns orthogonal in exact arithmetic, e.g. a beam's
+  // axial translation and bending rotation) are zero: through R^-1 they would leak the stiff
+  // springs into a motion the scene leaves free (1e-50 of them: a mechanism passing for a support).
+  Eigen::MatrixXd R = e.N.transpose() * Tf;
+  const double r_floor = 64.0 * std::numeric_limits<double>::epsilon() * R.cwiseAbs().maxCoeff();
+  R = R.unaryExpr([r_floor](double v) { return std::abs(v) <= r_floor ? 0.0 : v; });
   const Eigen::MatrixXd Rinv = checked_inverse(R, "dtfm: the end-spring coordinates (R of Tf = N R)");
   e.K = Rinv.transpose() * kf.asDiagonal() * Rinv;
   e.K = 0.5 * (e.K + e.K.transpose());

@@ -9,12 +9,18 @@
 // Wittrick-Williams count is the LDL^T inertia of K plus the segments' J0 (from the doubling).
 //   - natural frequencies: count-driven bisection until an interval holds one eigenvalue of a
 //     class, then Brent's method on det K * prod det Tdf (the characteristic function without
-//     the segments' poles; one mesh for the whole range); repeated values keep their
+//     the segments' poles; one mesh for the whole range), its bracket kept by the count at every
+//     evaluation, so that a polish stopped by a repeated determinant value (the rounding floor,
+//     or a step below the lambda resolution of K) returns only a root the count has bracketed
+//     to 1e-8 (else it bisects once more and polishes again); repeated values keep their
 //     multiplicity; every mode is then counted again just below and above it on a second
 //     discretization (other base pieces, other rounding): a mode that does not reproduce to
 //     5e-5 is reported (rounding floor of stiff layers against very slender spans or soft
 //     supports);
-//   - statics: K(0) d = f;
+//   - statics: K(0) d = f; a class with rigid motions of its own (beams) split into them and
+//     its elastic part held at anchors (detail::RigidLine), so that springs far softer than the
+//     rounding of K_int + K_springs (near-mechanisms) keep their digits and a mechanism is
+//     recognized structurally (a rigid motion no support reaches);
 //   - FRF: K(omega^2) d = f, or with structural damping (stiffness x (1 + i eta)) the complex
 //     solve K(omega^2 / (1 + i eta)) d = f / (1 + i eta);
 //   - mode shapes (shapes.cpp): the null vector of the mode's class K(omega^2) (inverse iteration
@@ -72,8 +78,9 @@ class LineAnalysis {
   ModeList modes(int k, const std::vector<ModeFamily>& families = {});
   /// Number of natural frequencies with omega^2 < lambda over the chosen classes (mesh for lambda).
   int count_below(double lambda, const std::vector<ModeFamily>& families = {});
-  /// Static response at probes (x, y) under point loads. Throws std::runtime_error naming a
-  /// mechanism if a loaded class is not restrained.
+  /// Static response at probes (x, y) under point loads. Throws std::runtime_error starting
+  /// "mechanism" if a loaded class is not restrained (the input's fault), another message if the
+  /// solve breaks down numerically.
   std::vector<Deflection> statics(const std::vector<PointLoad>& loads, const std::vector<std::array<double, 2>>& probes);
   /// Receptance w(observe) / Fz(excite) at each omega; `eta` structural loss factor. A sample
   /// at an undamped natural frequency is not finite: it is returned as NaN and counted.
