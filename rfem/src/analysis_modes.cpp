@@ -343,10 +343,11 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
       std::vector<const NearRigid::GroundSpring*> stiff;
       if (m_solver.info() == Eigen::Success)
         for (const auto& sp : near.springs)
-          if (sp.k * sp.row.dot(m_solver.solve(sp.row)) >= 1e6 * out.lambda[first_elastic]) stiff.push_back(&sp);
+          if (const Eigen::VectorXd row(sp.row); sp.k * row.dot(m_solver.solve(row)) >= 1e6 * out.lambda[first_elastic])
+            stiff.push_back(&sp);
       const long ns = static_cast<long>(stiff.size());
       Eigen::MatrixXd D(sys.n(), ns);
-      for (long j = 0; j < ns; ++j) D.col(j) = stiff[static_cast<std::size_t>(j)]->row;
+      for (long j = 0; j < ns; ++j) D.col(j) = Eigen::VectorXd(stiff[static_cast<std::size_t>(j)]->row);
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> dqr;
       if (ns > 0) dqr.compute(D);
       for (long i = 0; i < q && cluster; ++i) {

@@ -540,9 +540,10 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
       for (int c = 0; c < 6; ++c) {
         const double k = sd.stiffness[c];
         if (!(k > 0) || !std::isfinite(k) || D.row(c).squaredNorm() == 0) continue;
-        Eigen::VectorXd rq = Eigen::VectorXd::Zero(m.body_dofs());
-        for (int j = 0; j < na; ++j) rq[static_cast<long>(sd.a) * na + j] = D(c, j);
-        out.springs.push_back({k, sys.T.transpose() * rq});
+        Eigen::SparseVector<double> rq(m.body_dofs());
+        for (int j = 0; j < na; ++j)
+          if (D(c, j) != 0) rq.insert(static_cast<long>(sd.a) * na + j) = D(c, j);
+        out.springs.push_back({k, Eigen::SparseVector<double>(sys.T.transpose() * rq)});
       }
     }
   }

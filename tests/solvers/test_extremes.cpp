@@ -512,17 +512,26 @@ BOOST_AUTO_TEST_CASE(elongated_plates_converge_or_say_they_did_not) {
     BOOST_TEST_CONTEXT(b) {
       const Solver& sv = registry().get(b);
       const Result r = sv.solve(s, sv.default_mesh(s), testing::as_without_mesh());
-      BOOST_TEST(r.ok(), r.summary.message);
       BOOST_REQUIRE(r.frequencies_rad_s.size() == 8u);
       double worst = 0;
       for (std::size_t i = 0; i < 8; ++i)
         worst = std::max(worst, std::abs(r.frequencies_rad_s[i] / ex.frequencies_rad_s[i] - 1));
-      BOOST_TEST(worst < s.request.tolerance);
-      // The estimate is of the right size: within a factor of 5 of the true error, and not zero.
+      // Success with the accuracy asked; or not-converged, saying so, where the refinement had to
+      // stop because a finer mesh failed the back-end's own checks.
+      if (!r.ok()) {
+        BOOST_TEST(to_string(r.summary.status) == "not-converged", r.summary.message);
+        bool stopped = false;
+        for (const auto& w : r.summary.warnings) stopped = stopped || w.find("refinement stopped") != std::string::npos;
+        BOOST_TEST(stopped);
+      } else {
+        BOOST_TEST(worst < s.request.tolerance);
+      }
+      // The estimate is a bound of the right size: at least the true error, at most 20 times it
+      // (a grid convergence index: factors of safety 3 and 1.25), and not zero.
       const double est = r.summary.error_estimate.frequencies;
       BOOST_TEST(est > 0);
-      BOOST_TEST(est < 5 * std::max(worst, 1e-6));
-      BOOST_TEST(worst < 5 * est);
+      BOOST_TEST(worst <= est);
+      BOOST_TEST(est < 20 * std::max(worst, 1e-6));
     }
   }
   // The old default mesh, given explicitly: its error is found and reported, not called success.

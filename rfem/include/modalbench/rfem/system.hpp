@@ -89,7 +89,7 @@ struct NearRigid {
   /// when there are near-rigid pairs).
   struct GroundSpring {
     double k = 0;
-    Eigen::VectorXd row;
+    Eigen::SparseVector<double> row;  ///< sparse: an edge of a plate has hundreds of springs
   };
   std::vector<GroundSpring> springs;
 };
