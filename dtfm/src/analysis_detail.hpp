@@ -106,6 +106,20 @@ struct RigidLine {
 /// its own (plates; lines tied to the ground).
 std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double length);
 
+/// The line split at lambda = 0 ([[E, B], [B^T, C]] [e; a], K_int Psi = 0 analytically and never
+/// formed): E = K_int + the springs, held at the anchors; B = the non-anchor springs' forces of the
+/// rigid motions; C = Psi^T K_springs Psi; and the condensed rigid block over the free amplitudes.
+struct RigidCondensed {
+  std::vector<Eigen::MatrixXd> psi;  ///< per node: the rigid basis in the node's coordinates (mc x r)
+  Eigen::MatrixXd B;                 ///< nodes * mc x r
+  Eigen::MatrixXd C;                 ///< r x r
+  Eigen::MatrixXd Y;                 ///< E^-1 B over the free amplitudes (nodes * mc x rf)
+  Eigen::MatrixXd S;                 ///< C - B^T E^-1 B over the free amplitudes (rf x rf, anchor order: graded)
+};
+/// `K`: the assembled K(0) of rl.line on nodes x; its anchors are held here, and K is then E.
+/// Throws std::runtime_error if E is not positive definite.
+RigidCondensed condense_rigid(const RigidLine& rl, BlockTridiagonal& K, const std::vector<double>& x);
+
 /// Field values (physical) at every node from a class solution d (nodes x mc, end nodes in B coordinates).
 template <class Vec>
 std::vector<Vec> to_fields(const LineAnalysis::ClassLine& c, const Vec& d, int nn) {

@@ -3,13 +3,18 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/SVD>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "analysis_detail.hpp"
 #include "modalbench/numerics/line_system.hpp"
+#include "modalbench/numerics/quadrature.hpp"
+#include "modalbench/numerics/symmetric_factor.hpp"
 
 namespace modalbench::dtfm {
 
@@ -51,6 +56,160 @@ double LineAnalysis::family_share(ClassLine& c, double lambda) {
   return total > 0 ? rigid / total : 0.0;
 }
 
+/// The lowest eigenvalues of a class with rigid motions of its own: its rigid-body modes (the
+/// motions no support reaches: exactly 0) and its near-rigid modes (a beam on springs of 1e-6
+/// N/m, or rocking on 1.9 N/m about a support of 8e18 N/m), which the count cannot resolve: K's
+/// rounding is eps of its largest stiffness. They come from the split at lambda = 0
+/// (detail::condense_rigid): the rigid amplitudes' condensed springs S (graded, the elastic
+/// compliance included) against their mass Mr = int Phi^T M Phi dx. With S = L D L^T and
+/// Mr = R^T R, 1/lambda are the squared singular values of Z = D^-1/2 L^-1 R^T, whose rows are
+/// graded: one-sided Jacobi on them (rows sorted, full-pivot QR first) keeps the small lambda to
+/// relative accuracy however stiff the other springs.
+///
+/// What the split leaves out is second order: the exact condition is S(lambda) a = 0 with
+/// S(lambda) = S - lambda Mg - lambda^2 R(lambda), 0 <= lambda R <= lambda / (lambda_E - lambda) Mg
+/// (lambda_E: the anchored line's lowest eigenvalue, bounded below by its inertia), and Mg, the
+/// mass of the static shapes Psi - E^-1 B, differs from Mr by at most 2 sqrt(g) + g relative,
+/// g = a^T B^T E^-1 B a / lambda_E. Their sum is each value's bound.
+///
+/// Every value below the count's threshold is taken with its bound (the solver flags a loose one);
+/// above it, the lowest ones are taken while their bound is within the polish tolerance and they
+/// lie far below lambda_E, and the class is then sliced from a point between them and lambda_E
+/// whose count must agree.
+LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
+  NearRigid out;
+  out.rigid = below;
+  const double delta = kRigidThreshold * model_.lambda_scale;
+  out.lo = delta;
+  out.below_lo = below;
+  const std::optional<detail::RigidLine> rl = detail::rigid_line(c0, model_.length);
+  if (!rl) return out;  // no rigid motions of its own (plates): below the threshold is rigid
+  const int n_near = below - rl->unrestrained;  // near-rigid ones below the threshold
+  const Eigen::Index rf = static_cast<Eigen::Index>(rl->free_a.size());
+  if (rf == 0) return out;
+  auto fail = [&](const std::string& why) {
+    if (n_near > 0)
+      out.problem = fmt::format("{} mode(s) of the {} family below {:g} of the stiffness scale are not rigid-body "
+                                "modes (supports reach them) but could not be resolved, reported as 0: {}",
+                                n_near, to_string(c0.family), kRigidThreshold, why);
+    return out;
+  };
+  if (n_near < 0 || n_near > rf)
+    return fail(fmt::format("the count finds {} below the threshold, the supports leave {} rigid motion(s) free and "
+                            "restrain {}", below, rl->unrestrained, rf));
+  const Mesh mesh0 = mesh_for(c0, 0.0, {});
+  Assembled a0 = assemble(rl->line, 0.0, mesh0);
+  detail::RigidCondensed cd;
+  try {
+    cd = detail::condense_rigid(*rl, a0.K, mesh0.x);
+  } catch (const std::runtime_error& e) {
+    return fail(e.what());
+  }
+  // The rigid amplitudes' mass (class units: the kinetic energy is int d^T M d dx).
+  Eigen::MatrixXd Mr(rf, rf);
+  for (Eigen::Index p = 0; p < rf; ++p)
+    for (Eigen::Index q = 0; q <= p; ++q) {
+      const int ap = rl->free_a[static_cast<std::size_t>(p)], aq = rl->free_a[static_cast<std::size_t>(q)];
+      const Integral in = integrate(
+          [&](double x) {
+            const Eigen::MatrixXd P = rl->phi(x);
+            return P.col(ap).dot(rl->line.M * P.col(aq));
+          },
+          0.0, model_.length, 1e-13);
+      Mr(p, q) = Mr(q, p) = in.value;
+    }
+  Eigen::MatrixXd L = cd.S;
+  const Eigen::VectorXd piv = graded_ldlt(L);
+  for (Eigen::Index i = 0; i < rf; ++i)
+    if (!(piv[i] > 0) || !std::isfinite(piv[i]))
+      return fail(fmt::format("condensed spring pivot {} of {} is {:.3g}", i + 1, rf, piv[i]));
+  const Eigen::LLT<Eigen::MatrixXd> llt(Mr);
+  if (llt.info() != Eigen::Success) return fail("the rigid motions' mass is not positive definite");
+  const Eigen::MatrixXd R = llt.matrixU();
+  Eigen::MatrixXd Z = L.triangularView<Eigen::UnitLower>().solve(Eigen::MatrixXd(R.transpose()));
+  for (Eigen::Index i = 0; i < rf; ++i) Z.row(i) /= std::sqrt(piv[i]);
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(rf));
+  for (Eigen::Index i = 0; i < rf; ++i) order[static_cast<std::size_t>(i)] = i;
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index x, Eigen::Index y) { return Z.row(x).norm() > Z.row(y).norm(); });
+  Eigen::MatrixXd Zs(rf, rf);
+  for (Eigen::Index i = 0; i < rf; ++i) Zs.row(i) = Z.row(order[static_cast<std::size_t>(i)]);
+  const Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(Zs, Eigen::ComputeFullV);
+  const Eigen::VectorXd sig = svd.singularValues();  // descending: lambda ascending
+  if (!sig.allFinite() || !(sig[rf - 1] > 0)) return fail("the rigid-body Rayleigh-Ritz breaks down");
+  std::vector<double> ritz(static_cast<std::size_t>(rf));
+  for (Eigen::Index i = 0; i < rf; ++i) ritz[static_cast<std::size_t>(i)] = 1.0 / (sig[i] * sig[i]);
+  // The count and the Ritz values must split the spectrum at the threshold alike.
+  if ((n_near > 0 && ritz[static_cast<std::size_t>(n_near - 1)] > 10.0 * delta) ||
+      (n_near < rf && ritz[static_cast<std::size_t>(n_near)] < 0.1 * delta))
+    return fail(fmt::format("the count below the threshold ({}) and the rigid-body Rayleigh-Ritz values disagree", n_near));
+  // A lower bound on the anchored line's lowest eigenvalue: the largest of scale * 10^-j at which
+  // it is still positive definite.
+  auto anchored_pd = [&](double t) {
+    const Mesh mt = mesh_for(c0, t, {});
+    Assembled at = assemble(rl->line, t, mt);
+    const int nn = static_cast<int>(mt.x.size());
+    for (const auto& an : rl->anchors) at.K.hold(an.end == 0 ? 0 : nn - 1, an.coord);
+    const auto in = at.K.inertia();
+    return in.negative == 0 && in.zero == 0 && at.info.clamped_below == 0;
+  };
+  double lambda_e = 0;
+  for (double t = model_.lambda_scale; t > 100.0 * ritz[0]; t *= 0.1)
+    if (anchored_pd(t)) {
+      lambda_e = t;
+      break;
+    }
+  // Closer (to 4 %) where a value above the threshold may be taken.
+  if (lambda_e > 0 && lambda_e < model_.lambda_scale && n_near < rf &&
+      ritz[static_cast<std::size_t>(n_near)] < 1e-4 * lambda_e)
+    for (int step = 0; step < 6; ++step) {
+      const double up = lambda_e * std::pow(10.0, std::ldexp(1.0, -step - 1));
+      if (anchored_pd(up)) lambda_e = up;
+    }
+  Eigen::MatrixXd Bf(cd.B.rows(), rf);
+  for (Eigen::Index q = 0; q < rf; ++q) Bf.col(q) = cd.B.col(rl->free_a[static_cast<std::size_t>(q)]);
+  const Eigen::MatrixXd Rinv_v = R.triangularView<Eigen::Upper>().solve(svd.matrixV());
+  std::vector<double> bound(static_cast<std::size_t>(rf), std::numeric_limits<double>::infinity());
+  if (lambda_e > 0)
+    for (Eigen::Index i = 0; i < rf; ++i) {
+      const double lam = ritz[static_cast<std::size_t>(i)];
+      if (!(lam < lambda_e)) break;
+      const Eigen::VectorXd av = Rinv_v.col(i);  // a^T Mr a = 1
+      const double g = std::max(0.0, (Bf * av).dot(cd.Y * av)) / lambda_e;
+      bound[static_cast<std::size_t>(i)] = lam / (lambda_e - lam) + 2.0 * std::sqrt(g) + g + 1e-14;
+    }
+  // Those below the threshold, with their bound whatever it is.
+  for (int i = 0; i < n_near; ++i) {
+    out.lambdas.push_back(ritz[static_cast<std::size_t>(i)]);
+    out.bound = std::max(out.bound, bound[static_cast<std::size_t>(i)]);
+  }
+  out.rigid = rl->unrestrained;
+  // Above it, while the bound beats what the count can resolve there (eps times K's largest
+  // stiffness over lambda times the mass: a rocking on 1.9 N/m beside 8e18 N/m came out 6.8e-7
+  // off by the count), or the polish tolerance, and lambda_E lies far above.
+  const double mass = Mr.diagonal().maxCoeff();
+  const double stiff = std::max(piv.maxCoeff(), model_.lambda_scale * mass);
+  int n_acc = n_near;
+  for (; n_acc < rf; ++n_acc) {
+    const double lam = ritz[static_cast<std::size_t>(n_acc)], b = bound[static_cast<std::size_t>(n_acc)];
+    const double count_floor = std::numeric_limits<double>::epsilon() * stiff / (lam * mass);
+    if (!(b <= 1e-6 && b <= std::max(ctl_.rel_tol, count_floor) && lam <= 1e-4 * lambda_e)) break;
+  }
+  if (n_acc > n_near) {
+    const double sep = std::sqrt(ritz[static_cast<std::size_t>(n_acc - 1)] * lambda_e);
+    if (count_det(c0, sep, mesh_for(c0, sep, {})).count == rl->unrestrained + n_acc) {
+      double worst = out.bound;
+      for (int i = n_near; i < n_acc; ++i) {
+        out.lambdas.push_back(ritz[static_cast<std::size_t>(i)]);
+        worst = std::max(worst, bound[static_cast<std::size_t>(i)]);
+      }
+      out.bound = worst;
+      out.lo = sep;
+      out.below_lo = rl->unrestrained + n_acc;
+    }
+  }
+  return out;
+}
+
 ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   ModeList out;
   if (k <= 0) return out;
@@ -74,6 +233,15 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   std::vector<int> rigid_c(lines_.size(), 0);
   int rigid = 0;
   for (int c : cls) rigid += rigid_c[c] = count_det(*lines_[c], delta, mesh[c]).count;
+  // The lowest eigenvalues of classes with rigid motions of their own: rigid (0) and near-rigid.
+  std::vector<NearRigid> near(lines_.size());
+  for (int c : cls) {
+    near[c] = near_rigid(*lines_[c], rigid_c[c]);
+    if (!near[c].problem.empty()) {
+      out.count_consistent = false;
+      out.count_message += (out.count_message.empty() ? "" : "; ") + near[c].problem;
+    }
+  }
   double lo = delta, hi = scale;
   int n_hi = rigid;
   if (rigid < k) {
@@ -100,21 +268,32 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   struct Found {
     double lambda;
     int cls;
+    bool near = false;  // a near-rigid mode (below the count's resolution)
   };
   std::vector<Found> all;
-  for (int c : cls)
-    for (int j = 0; j < rigid_c[c]; ++j) all.push_back({0.0, c});
+  int true_rigid = 0;
+  for (int c : cls) {
+    for (int j = 0; j < near[c].rigid; ++j) all.push_back({0.0, c});
+    true_rigid += near[c].rigid;
+    for (double v : near[c].lambdas) {
+      all.push_back({v, c, true});
+      ++out.near_rigid;
+      out.near_rigid_bound = std::max(out.near_rigid_bound, near[c].bound);
+    }
+  }
   if (rigid < k) {
     for (int c : cls) {
+      if (near[c].lo >= hi) continue;  // its modes below hi are all near-rigid ones
       SliceStats st;
       const auto vals = detail::slice_class(
-          [&](double lam) { return count_det(*lines_[c], lam, mesh[c]); }, delta, hi, ctl_.rel_tol, 1e-14 * scale, &st);
+          [&](double lam) { return count_det(*lines_[c], lam, mesh[c]); }, near[c].lo, hi, ctl_.rel_tol, 1e-14 * scale,
+          &st);
       for (double v : vals) all.push_back({v, c});
     }
   }
   std::stable_sort(all.begin(), all.end(), [](const Found& a, const Found& b) { return a.lambda < b.lambda; });
   if (static_cast<int>(all.size()) > k) all.resize(k);
-  out.rigid = std::min(rigid, k);
+  out.rigid = std::min(true_rigid, k);
   for (std::size_t i = 0; i < all.size(); ++i) {
     const auto& f = all[i];
     out.omega_rad_s.push_back(std::sqrt(std::max(f.lambda, 0.0)));
@@ -122,6 +301,11 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     auto& line = *lines_[f.cls];
     if (static_cast<int>(i) < out.rigid) {
       out.family.push_back(ModeFamily::Rigid);
+      out.family_share.push_back(1.0);
+      continue;
+    }
+    if (f.near) {  // a rigid motion of its class on soft springs, by construction
+      out.family.push_back(line.family);
       out.family_share.push_back(1.0);
       continue;
     }
@@ -143,11 +327,15 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   }
   int failures = 0;
   for (std::size_t i = static_cast<std::size_t>(out.rigid); i < all.size(); ++i) {
+    if (all[i].near) {  // below the count's resolution: checked by its own bound instead
+      out.reproducible.push_back(true);
+      continue;
+    }
     const int c = all[i].cls;
     const double lam = all[i].lambda;
-    int below = rigid_c[c], upto = rigid_c[c];
+    int below = near[c].below_lo, upto = near[c].below_lo;
     for (const auto& f : all)
-      if (f.cls == c && f.lambda > 0) {
+      if (f.cls == c && f.lambda > 0 && !f.near) {
         below += f.lambda < lam * (1 - tau);
         upto += f.lambda <= lam * (1 + tau);
       }

@@ -12,6 +12,7 @@
 #include "modalbench/numerics/balancing.hpp"
 #include "modalbench/numerics/line_system.hpp"
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
+#include "modalbench/numerics/symmetric_factor.hpp"
 
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -83,89 +84,40 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> near_node(const LineAnalysis::ClassLine
   return (T * eta).head(mc);
 }
 
-/// LDL^T without pivoting in the given (graded, stiffest first) order; returns the pivots, NaN from
-/// the first zero or non-finite one on.
-Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S) {
-  const Eigen::Index r = S.rows();
-  Eigen::VectorXd d = Eigen::VectorXd::Constant(r, std::numeric_limits<double>::quiet_NaN());
-  for (Eigen::Index k = 0; k < r; ++k) {
-    if (S(k, k) == 0.0 || !std::isfinite(S(k, k))) return d;
-    d[k] = S(k, k);
-    for (Eigen::Index i = k + 1; i < r; ++i) S(i, k) /= d[k];
-    for (Eigen::Index i = k + 1; i < r; ++i)
-      for (Eigen::Index j = k + 1; j <= i; ++j) S(i, j) -= S(i, k) * d[k] * S(j, k);
-  }
-  return d;
-}
-
-/// K(0) d = f split into rigid amplitudes and the anchored elastic part (detail::RigidLine):
-///   [[E, B], [B^T, C]] [e; a] = [f; Psi^T f],  E = K_int + K_springs held at the anchors,
-///   B = K_springs Psi (non-anchor springs), C = Psi^T K_springs Psi,
-/// K_int Psi = 0 analytically and never formed. `K` is the assembled K(0) of rl.line (its anchors
-/// get held here); `e` the elastic nodal values, `a` the amplitudes. Throws std::runtime_error
-/// (numerical) if the elastic part is not positive definite or a condensed pivot is not resolved.
+/// K(0) d = f split into rigid amplitudes and the anchored elastic part (detail::RigidLine,
+/// detail::condense_rigid): `K` is the assembled K(0) of rl.line (its anchors get held), `e` the
+/// elastic nodal values, `a` the amplitudes. Throws std::runtime_error (numerical) if the elastic
+/// part is not positive definite or a condensed pivot is not resolved.
 void solve_split(const detail::RigidLine& rl, BlockTridiagonal& K, const std::vector<double>& x,
                  const Eigen::VectorXd& f, Eigen::VectorXd& e, Eigen::VectorXd& a) {
   const auto& c = rl.line;
   const int nn = static_cast<int>(x.size()), mc = c.mc;
   const Eigen::Index r = rl.V0.cols();
-  std::vector<Eigen::MatrixXd> psi(static_cast<std::size_t>(nn));
-  for (int i = 0; i < nn; ++i)
-    psi[static_cast<std::size_t>(i)] = rl.node_psi(x[static_cast<std::size_t>(i)], i == 0 ? 0 : (i == nn - 1 ? 1 : -1));
-  for (const auto& an : rl.anchors) K.hold(an.end == 0 ? 0 : nn - 1, an.coord);
-  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn) * mc, r);
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(r, r);
-  for (int end = 0; end < 2; ++end) {
-    const int nd = end == 0 ? 0 : nn - 1;
-    const auto& ce = c.ends[end];
-    for (int j = 0; j < ce.n_free; ++j) {
-      const double k = ce.K(j, j);
-      if (!(k > rl.k_zero)) continue;
-      const Eigen::RowVectorXd p = psi[static_cast<std::size_t>(nd)].row(j);
-      C.noalias() += k * p.transpose() * p;
-      if (!rl.is_anchor(end, j)) B.row(static_cast<Eigen::Index>(nd) * mc + j) += k * p;
-    }
-  }
+  detail::RigidCondensed cd = detail::condense_rigid(rl, K, x);
   Eigen::VectorXd fa = Eigen::VectorXd::Zero(r);
   for (int i = 0; i < nn; ++i)
-    fa += psi[static_cast<std::size_t>(i)].transpose() * f.segment(static_cast<Eigen::Index>(i) * mc, mc);
-  const BlockTridiagonal::Inertia in = K.inertia();
-  if (in.negative > 0 || in.zero > 0)
-    throw std::runtime_error(fmt::format(
-        "static solve of the {} family: the line held at its rigid-motion anchors is not positive definite "
-        "({} negative, {} zero pivots): its elastic part cannot be separated",
-        to_string(c.family), in.negative, in.zero));
+    fa += cd.psi[static_cast<std::size_t>(i)].transpose() * f.segment(static_cast<Eigen::Index>(i) * mc, mc);
   const Eigen::VectorXd y = K.solve(f, 0.0);
   const Eigen::Index rf = static_cast<Eigen::Index>(rl.free_a.size());
-  Eigen::MatrixXd Y(B.rows(), rf), S(rf, rf);
   Eigen::VectorXd rhs(rf);
-  for (Eigen::Index q = 0; q < rf; ++q) Y.col(q) = K.solve(B.col(rl.free_a[static_cast<std::size_t>(q)]), 0.0);
   for (Eigen::Index p = 0; p < rf; ++p) {
     const int ap = rl.free_a[static_cast<std::size_t>(p)];
-    rhs[p] = fa[ap] - B.col(ap).dot(y);
-    for (Eigen::Index q = 0; q < rf; ++q)
-      S(p, q) = C(ap, rl.free_a[static_cast<std::size_t>(q)]) - B.col(ap).dot(Y.col(q));
+    rhs[p] = fa[ap] - cd.B.col(ap).dot(y);
   }
-  const Eigen::VectorXd piv = graded_ldlt(S);
+  const Eigen::VectorXd piv = graded_ldlt(cd.S);
   for (Eigen::Index k = 0; k < rf; ++k)
     if (!std::isfinite(piv[k]) || !(piv[k] > 0))
       throw std::runtime_error(fmt::format(
           "static solve of the {} family: the stiffness of rigid-body motion {} of {} against its supports "
           "(condensed pivot {:.3g}) is not resolved in double precision",
           to_string(c.family), k + 1, rf, piv[k]));
-  // L D L^T a = rhs (unit lower L below the diagonal of S).
-  Eigen::VectorXd af = rhs;
-  for (Eigen::Index i = 0; i < rf; ++i)
-    for (Eigen::Index j = 0; j < i; ++j) af[i] -= S(i, j) * af[j];
-  for (Eigen::Index i = 0; i < rf; ++i) af[i] /= piv[i];
-  for (Eigen::Index i = rf; i-- > 0;)
-    for (Eigen::Index j = i + 1; j < rf; ++j) af[i] -= S(j, i) * af[j];
+  const Eigen::VectorXd af = graded_ldlt_solve(cd.S, piv, rhs);
   a = Eigen::VectorXd::Zero(r);
   for (Eigen::Index p = 0; p < rf; ++p) a[rl.free_a[static_cast<std::size_t>(p)]] = af[p];
   if (!a.allFinite())
     throw std::runtime_error(fmt::format("static solve of the {} family: the rigid-body amplitudes overflow "
                                          "(supports too soft for double precision)", to_string(c.family)));
-  e = y - Y * af;
+  e = y - cd.Y * af;
 }
 
 }  // namespace

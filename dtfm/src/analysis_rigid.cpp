@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "analysis_detail.hpp"
 
@@ -129,6 +132,44 @@ std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double len
   }
   R.k_zero = k_zero;
   return R;
+}
+
+RigidCondensed condense_rigid(const RigidLine& rl, BlockTridiagonal& K, const std::vector<double>& x) {
+  const auto& c = rl.line;
+  const int nn = static_cast<int>(x.size()), mc = c.mc;
+  const Eigen::Index r = rl.V0.cols();
+  RigidCondensed out;
+  for (int i = 0; i < nn; ++i)
+    out.psi.push_back(rl.node_psi(x[static_cast<std::size_t>(i)], i == 0 ? 0 : (i == nn - 1 ? 1 : -1)));
+  for (const auto& an : rl.anchors) K.hold(an.end == 0 ? 0 : nn - 1, an.coord);
+  out.B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn) * mc, r);
+  out.C = Eigen::MatrixXd::Zero(r, r);
+  for (int end = 0; end < 2; ++end) {
+    const int nd = end == 0 ? 0 : nn - 1;
+    const auto& ce = c.ends[end];
+    for (int j = 0; j < ce.n_free; ++j) {
+      const double k = ce.K(j, j);
+      if (!(k > rl.k_zero)) continue;
+      const Eigen::RowVectorXd p = out.psi[static_cast<std::size_t>(nd)].row(j);
+      out.C.noalias() += k * p.transpose() * p;
+      if (!rl.is_anchor(end, j)) out.B.row(static_cast<Eigen::Index>(nd) * mc + j) += k * p;
+    }
+  }
+  const BlockTridiagonal::Inertia in = K.inertia();
+  if (in.negative > 0 || in.zero > 0)
+    throw std::runtime_error(fmt::format(
+        "the {} family held at its rigid-motion anchors is not positive definite ({} negative, {} zero pivots): "
+        "its elastic part cannot be separated",
+        to_string(c.family), in.negative, in.zero));
+  const Eigen::Index rf = static_cast<Eigen::Index>(rl.free_a.size());
+  out.Y.resize(out.B.rows(), rf);
+  out.S.resize(rf, rf);
+  for (Eigen::Index q = 0; q < rf; ++q) out.Y.col(q) = K.solve(out.B.col(rl.free_a[static_cast<std::size_t>(q)]), 0.0);
+  for (Eigen::Index p = 0; p < rf; ++p)
+    for (Eigen::Index q = 0; q < rf; ++q)
+      out.S(p, q) = out.C(rl.free_a[static_cast<std::size_t>(p)], rl.free_a[static_cast<std::size_t>(q)]) -
+                    out.B.col(rl.free_a[static_cast<std::size_t>(p)]).dot(out.Y.col(q));
+  return out;
 }
 
 }  // namespace modalbench::dtfm::detail

@@ -170,6 +170,17 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
       sum.warnings.push_back(fmt::format(
           "{} mode(s) labelled unknown: their rigid-section share of kinetic energy is below one half", unknown));
     if (!ml.count_consistent) sum.raise(Status::NumericalIssue, "dtfm: " + ml.count_message);
+    if (ml.near_rigid > 0) {
+      // Near-rigid modes: their own error bound (half the eigenvalues') is the solve's.
+      const double bound = 0.5 * ml.near_rigid_bound;
+      sum.set_diagnostic("near_rigid_frequency_error_bound", bound);
+      sum.set_diagnostic("frequency_solve_error_bound", bound);
+      if (!(bound <= 1e-2 * scene.request.tolerance))
+        sum.raise(Status::NumericalIssue,
+                  fmt::format("dtfm: {} near-rigid mode(s): their rigid-body Rayleigh-Ritz frequencies are only known "
+                              "to {:.2g}, above 1 % of the tolerance {:.2g}",
+                              ml.near_rigid, bound, scene.request.tolerance));
+    }
     if (static_cast<int>(ml.omega_rad_s.size()) < k)
       sum.raise(Status::NotConverged, fmt::format("dtfm: only {} of {} modes found", ml.omega_rad_s.size(), k));
     if (scene.request.shapes && !ml.omega_rad_s.empty()) {

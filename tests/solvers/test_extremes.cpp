@@ -91,6 +91,18 @@ BOOST_AUTO_TEST_CASE(near_rigid_modes_of_a_beam_on_soft_springs) {
   BOOST_TEST(rel(f.frequencies_rad_s[0], heave) < 1e-9);
   BOOST_TEST(rel(f.frequencies_rad_s[1], rocking) < 1e-4);
   BOOST_TEST(rel(f.frequencies_rad_s[2], r.frequencies_rad_s[2]) < 1e-3);
+  // dtfm reported 0 and 0 as rigid with success: below its count's resolution. One prism is the
+  // Euler-Bernoulli beam itself, so its rigid-body Rayleigh-Ritz on the condensed springs is exact
+  // to the relative order of the elastic correction.
+  const Result p = run("dtfm", s, "1x1");
+  BOOST_TEST(to_string(p.summary.status) == "success", p.summary.message);
+  BOOST_REQUIRE(p.frequencies_rad_s.size() == 4u);
+  BOOST_TEST(rel(p.frequencies_rad_s[0], heave) < 1e-9);
+  BOOST_TEST(rel(p.frequencies_rad_s[1], rocking) < 1e-9);
+  BOOST_TEST(to_string(p.mode_families[0]) == "bending-xz");
+  BOOST_TEST(to_string(p.mode_families[1]) == "bending-xz");
+  BOOST_TEST(p.summary.diagnostic("near_rigid_frequency_error_bound") < 1e-9);
+  BOOST_TEST(rel(p.frequencies_rad_s[2], r.frequencies_rad_s[2]) < 1e-9);
 }
 
 // Issue 18 (13): the Lasecka beam with both ends on 1e-6 N/m translational springs only:
@@ -110,6 +122,45 @@ BOOST_AUTO_TEST_CASE(near_rigid_modes_translational_springs_only) {
   BOOST_REQUIRE(f.frequencies_rad_s.size() == 3u);
   BOOST_TEST(rel(f.frequencies_rad_s[0], heave) < 1e-9);
   BOOST_TEST(rel(f.frequencies_rad_s[1], rocking) < 1e-4);
+  const Result p = run("dtfm", s, "1x1");
+  BOOST_TEST(to_string(p.summary.status) == "success", p.summary.message);
+  BOOST_REQUIRE(p.frequencies_rad_s.size() == 3u);
+  BOOST_TEST(rel(p.frequencies_rad_s[0], heave) < 1e-9);
+  BOOST_TEST(rel(p.frequencies_rad_s[1], rocking) < 1e-9);
+}
+
+// Fuzz finding (case 919): a spatial Timoshenko beam 1.5 x 0.2 x 0.1 m, x0 free in bending, xL on
+// a translational spring of 1.04e12 N/m and a rotational one of 3.65e-5 N m/rad. Its first two
+// modes are the rigid rotations about xL in the two planes, omega^2 = k_r / (rho A L^3 / 3 +
+// rho I L) with I the plane's second moment (by hand; the elastic and the translational spring's
+// corrections are below 1e-12). dtfm labelled both rigid at 0 with success.
+BOOST_AUTO_TEST_CASE(near_rigid_rotations_of_a_spatial_dtfm_beam) {
+  const double L = 1.5, b = 0.2, h = 0.1, E = 210e9, rho = 7850, kr = 3.652334700850475e-05;
+  Support x0 = springs(0.0, 0.0), xL = springs(1037037037037.0372, kr);
+  x0.axial = 2.8e24;
+  x0.torsional = 1.5076923076923087e-06;
+  xL.axial = 0.0028;
+  xL.torsional = 1.5076923076923086;
+  Scene s = eb_beam(L, b, h, E, rho, x0, xL);
+  s.theory = Theory::Timoshenko;
+  s.physics = Physics::Spatial;
+  s.request.modes = 4;
+  validate(s);
+  const double A = b * h, Iy = b * h * h * h / 12, Iz = h * b * b * b / 12;
+  const double xz = std::sqrt(kr / (rho * A * L * L * L / 3 + rho * Iy * L));
+  const double xy = std::sqrt(kr / (rho * A * L * L * L / 3 + rho * Iz * L));
+  const Result p = run("dtfm", s, "1x1");
+  BOOST_TEST(to_string(p.summary.status) == "success", p.summary.message);
+  BOOST_REQUIRE(p.frequencies_rad_s.size() == 4u);
+  BOOST_TEST(rel(p.frequencies_rad_s[0], xy) < 1e-9);
+  BOOST_TEST(rel(p.frequencies_rad_s[1], xz) < 1e-9);
+  BOOST_TEST(to_string(p.mode_families[0]) == "bending-xy");
+  BOOST_TEST(to_string(p.mode_families[1]) == "bending-xz");
+  const Result e = run("exact", s);
+  BOOST_TEST(e.ok(), e.summary.message);
+  BOOST_REQUIRE(e.frequencies_rad_s.size() == 4u);
+  BOOST_TEST(rel(e.frequencies_rad_s[0], xy) < 1e-9);
+  BOOST_TEST(rel(e.frequencies_rad_s[1], xz) < 1e-9);
 }
 
 // Fuzz finding (case 292): a cantilever clamped through finite springs, k = 1.19e17 N/m and
@@ -154,6 +205,10 @@ BOOST_AUTO_TEST_CASE(near_rigid_mode_beside_a_stiff_spring) {
   BOOST_TEST(e.ok(), e.summary.message);
   BOOST_REQUIRE(!e.frequencies_rad_s.empty());
   BOOST_TEST(rel(e.frequencies_rad_s[0], rocking) < 1e-8);
+  const Result p = run("dtfm", s, "1x1");
+  BOOST_TEST(p.ok(), p.summary.message);
+  BOOST_REQUIRE(!p.frequencies_rad_s.empty());
+  BOOST_TEST(rel(p.frequencies_rad_s[0], rocking) < 1e-8);
   // 256 segments: Lanczos' value was 2.8e-3 off with success, and the Kato-Temple bound of the
   // Rayleigh-Ritz pair failed on the stiff spring's k times the rounding of z (now a reaction).
   for (const char* mesh : {"256", "512", "1024"}) {

@@ -1,4 +1,5 @@
 #include "modalbench/numerics/line_system.hpp"
+#include "modalbench/numerics/symmetric_factor.hpp"
 
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -166,21 +167,6 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
   return S;
 }
 
-/// LDL^T without pivoting in the given (graded, stiffest first) order; returns the pivots. A
-/// zero or non-finite pivot ends it: that pivot and the rest are NaN (callers fall back or refuse).
-Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S) {
-  const Eigen::Index r = S.rows();
-  Eigen::VectorXd d = Eigen::VectorXd::Constant(r, std::numeric_limits<double>::quiet_NaN());
-  for (Eigen::Index k = 0; k < r; ++k) {
-    if (S(k, k) == 0.0 || !std::isfinite(S(k, k))) return d;
-    d[k] = S(k, k);
-    for (Eigen::Index i = k + 1; i < r; ++i) S(i, k) /= d[k];
-    for (Eigen::Index i = k + 1; i < r; ++i)
-      for (Eigen::Index j = k + 1; j <= i; ++j) S(i, j) -= S(i, k) * d[k] * S(j, k);
-  }
-  return d;
-}
-
 /// The condensed rigid block S = C - B^T E^-1 B over the free amplitudes, and E^-1 B.
 struct Condensed {
   Eigen::MatrixXd S, Y;  // Y = E^-1 B (free columns)
@@ -262,13 +248,7 @@ Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, dou
         if (std::isnan(d[k]))
           throw std::runtime_error("dynamic stiffness matrix is singular to working precision in the rigid-body "
                                    "motions of the line (a mechanism, or omega at a natural frequency)");
-      // L D L^T a = rhs, unit lower L below the diagonal.
-      Eigen::VectorXd a_free = rhs;
-      for (Eigen::Index i = 0; i < r; ++i)
-        for (Eigen::Index j = 0; j < i; ++j) a_free[i] -= L(i, j) * a_free[j];
-      for (Eigen::Index i = 0; i < r; ++i) a_free[i] /= d[i];
-      for (Eigen::Index i = r; i-- > 0;)
-        for (Eigen::Index j = i + 1; j < r; ++j) a_free[i] -= L(j, i) * a_free[j];
+      const Eigen::VectorXd a_free = graded_ldlt_solve(L, d, rhs);
       Eigen::VectorXd a = Eigen::VectorXd::Zero(m);
       for (Eigen::Index p = 0; p < r; ++p) a[sp.free_a[p]] = a_free[p];
       Eigen::VectorXd e = y - c.Y * a_free;

@@ -57,4 +57,27 @@ Eigen::MatrixXd SymFactor::solve(const Eigen::MatrixXd& B) const {
   return eig.eigenvectors() * inv.asDiagonal() * (eig.eigenvectors().transpose() * B);
 }
 
+Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S) {
+  const Eigen::Index r = S.rows();
+  Eigen::VectorXd d = Eigen::VectorXd::Constant(r, std::numeric_limits<double>::quiet_NaN());
+  for (Eigen::Index k = 0; k < r; ++k) {
+    if (S(k, k) == 0.0 || !std::isfinite(S(k, k))) return d;
+    d[k] = S(k, k);
+    for (Eigen::Index i = k + 1; i < r; ++i) S(i, k) /= d[k];
+    for (Eigen::Index i = k + 1; i < r; ++i)
+      for (Eigen::Index j = k + 1; j <= i; ++j) S(i, j) -= S(i, k) * d[k] * S(j, k);
+  }
+  return d;
+}
+
+Eigen::VectorXd graded_ldlt_solve(const Eigen::MatrixXd& S, const Eigen::VectorXd& d, Eigen::VectorXd b) {
+  const Eigen::Index r = d.size();
+  for (Eigen::Index i = 0; i < r; ++i)
+    for (Eigen::Index j = 0; j < i; ++j) b[i] -= S(i, j) * b[j];
+  for (Eigen::Index i = 0; i < r; ++i) b[i] /= d[i];
+  for (Eigen::Index i = r; i-- > 0;)
+    for (Eigen::Index j = i + 1; j < r; ++j) b[i] -= S(j, i) * b[j];
+  return b;
+}
+
 }  // namespace modalbench

@@ -26,4 +26,14 @@ struct SymFactor {
   void tally(double d);
 };
 
+/// LDL^T of a small symmetric matrix without pivoting, in the order given. For a matrix graded
+/// from its stiffest row down (a line's condensed rigid-body block, springs spanning 25 orders)
+/// each pivot keeps its relative accuracy, where a pivoting or eigen-decomposition would not.
+/// On return the strict lower triangle of S holds the unit lower factor L; the result holds the
+/// pivots, NaN from the first zero or non-finite one on (callers fall back or refuse).
+Eigen::VectorXd graded_ldlt(Eigen::MatrixXd& S);
+
+/// x with L D L^T x = b, from graded_ldlt's factor (S) and pivots (d, all finite and nonzero).
+Eigen::VectorXd graded_ldlt_solve(const Eigen::MatrixXd& S, const Eigen::VectorXd& d, Eigen::VectorXd b);
+
 }  // namespace modalbench

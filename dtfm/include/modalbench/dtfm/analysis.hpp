@@ -64,6 +64,11 @@ struct ModeList {
   long evaluations = 0;             ///< count / determinant evaluations
   bool count_consistent = true;     ///< every mode reproduces (count just below / above it, second discretization)
   std::string count_message;
+  /// Near-rigid modes (beams on springs below 1e-10 of the stiffness scale): how many, and the
+  /// largest estimated relative error of their omega^2 (rigid-body Rayleigh-Ritz on the condensed
+  /// springs, analysis_modes.cpp).
+  int near_rigid = 0;
+  double near_rigid_bound = 0;
 };
 
 class LineAnalysis {
@@ -132,6 +137,17 @@ class LineAnalysis {
   ComplexBlockTridiagonal assemble(const ClassLine& c, std::complex<double> lambda, const Mesh& mesh);
   CountDet count_det(const ClassLine& c, double lambda, const Mesh& mesh);
   double family_share(ClassLine& c, double lambda);
+  /// The lowest eigenvalues of class c, `below` of them under the count's threshold: rigid-body
+  /// modes and near-rigid ones (analysis_modes.cpp).
+  struct NearRigid {
+    int rigid = 0;                 ///< rigid-body modes (0)
+    std::vector<double> lambdas;   ///< near-rigid omega^2, ascending
+    double bound = 0;              ///< their largest estimated relative error
+    std::string problem;           ///< why they could not be resolved (then all `below` are in `rigid`)
+    double lo = 0;                 ///< the class is sliced from here (the threshold, or above the near-rigid ones)
+    int below_lo = 0;              ///< its count at lo
+  };
+  NearRigid near_rigid(ClassLine& c, int below);
   /// The shapes of the modes `which` (one class, one lambda; 0: rigid) into `out` (shapes.cpp).
   void cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
                       const std::vector<double>& xs, const Eigen::MatrixXd& translations, ModeShapes& out);
