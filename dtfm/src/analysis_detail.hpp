@@ -48,23 +48,6 @@ struct AssemblyInfo {
   double min_pivot_rel = 1;
 };
 
-/// A polish stopped at the determinant's rounding floor (a repeated value) is accepted only when
-/// the counts bracket its root this tightly (relative): far below what the reproducibility check
-/// resolves (1e-4), far above the tolerance a polish normally meets (SolveControls::rel_tol).
-inline constexpr double kPolishFloor = 1e-8;
-
-/// Every eigenvalue in [lambda_lo, lambda_hi) of a problem whose `eval(lambda)` gives the count
-/// below lambda and log |det K(lambda)| (without poles), with multiplicity, ascending
-/// (analysis_slicing.cpp). As core's slice_interval_polished (bisection on the count until an
-/// interval holds one eigenvalue, Brent's method on the signed determinant), but every
-/// evaluation of the polish narrows its bracket by the count, and a polish that stops on a
-/// repeated determinant value with the root still loosely bracketed bisects on the count and
-/// polishes again instead of returning a point that may be no root (a 30 m plate's first mode
-/// came out as a bracket end, 1246.13 instead of 1244.7 rad/s). Throws std::runtime_error if
-/// the count is not monotonic.
-std::vector<double> slice_class(const std::function<CountDet(double)>& eval, double lambda_lo, double lambda_hi,
-                                double rel_tol, double abs_tol, SliceStats* stats = nullptr);
-
 /// The rigid-body motions of a class line without its supports, and the anchors that separate
 /// them from the elastic part (analysis_rigid.cpp), for static solves of near-mechanisms.
 ///

@@ -285,7 +285,7 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     for (int c : cls) {
       if (near[c].lo >= hi) continue;  // its modes below hi are all near-rigid ones
       SliceStats st;
-      const auto vals = detail::slice_class(
+      const auto vals = slice_interval_polished(
           [&](double lam) { return count_det(*lines_[c], lam, mesh[c]); }, near[c].lo, hi, ctl_.rel_tol, 1e-14 * scale,
           &st);
       for (double v : vals) all.push_back({v, c});

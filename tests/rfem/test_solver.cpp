@@ -22,6 +22,24 @@ std::vector<Scene> builtin_scenes() {
     if (e.path().extension() == ".toml") v.push_back(load_scene(e.path()));
   return v;
 }
+
+/// The unit vertical load at the scene's FRF excitation point and the vertical observer at its
+/// observation point, on the model's coordinates.
+struct FrfPoints {
+  Eigen::Vector3d pe, po;
+  Eigen::VectorXd f, g;
+};
+FrfPoints frf_points(const Scene& sc, const Model& m, const System& sys) {
+  Vector6d fz = Vector6d::Zero();
+  fz[2] = 1;
+  const auto& fr = *sc.request.frf;
+  FrfPoints out;
+  out.pe = sc.is_beam() ? Eigen::Vector3d(fr.excite[0], 0, 0) : Eigen::Vector3d(fr.excite[0], fr.excite[1], 0);
+  out.po = sc.is_beam() ? Eigen::Vector3d(fr.observe[0], 0, 0) : Eigen::Vector3d(fr.observe[0], fr.observe[1], 0);
+  out.f = point_load(m, sys, out.pe, fz);
+  out.g = point_observer(m, sys, out.po, 2);
+  return out;
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(identity_and_capabilities) {
@@ -134,17 +152,13 @@ BOOST_AUTO_TEST_CASE(complete_spectrum_frf_equals_per_frequency_solves) {
     BOOST_TEST(r.summary.method.find("complete spectral decomposition") != std::string::npos);
     const Model m = RfemSolver::build(sc, mesh);
     const System sys = assemble(m);
-    Vector6d fz = Vector6d::Zero();
-    fz[2] = 1;
-    const auto& fr = *sc.request.frf;
-    const Eigen::Vector3d pe = sc.is_beam() ? Eigen::Vector3d(fr.excite[0], 0, 0) : Eigen::Vector3d(fr.excite[0], fr.excite[1], 0);
-    const Eigen::Vector3d po = sc.is_beam() ? Eigen::Vector3d(fr.observe[0], 0, 0) : Eigen::Vector3d(fr.observe[0], fr.observe[1], 0);
+    const FrfPoints at = frf_points(sc, m, sys);
     std::vector<double> omegas;
     for (std::size_t i = 0; i < r.frf.size(); i += 37) omegas.push_back(r.frf[i].omega_rad_s);
-    const FrfResult d = frf_direct(m, sys, point_load(m, sys, pe, fz), point_observer(m, sys, po, 2), omegas);
+    const FrfResult d = frf_direct(m, sys, at.f, at.g, omegas);
     BOOST_REQUIRE(d.omega.size() == omegas.size());
     // The solver adds the singular part of the point response (the same at every frequency).
-    const double singular = point_correction(m, po, 2, pe, 2);
+    const double singular = point_correction(m, at.po, 2, at.pe, 2);
     for (std::size_t k = 0; k < omegas.size(); ++k) {
       const std::complex<double> direct = d.receptance[k] + singular;
       BOOST_TEST(std::abs(direct - r.frf[37 * k].receptance) <= 1e-8 * std::abs(direct));
@@ -185,12 +199,10 @@ BOOST_AUTO_TEST_CASE(projected_frf_is_within_its_bound_of_the_direct_solve) {
       }
       const Model m = RfemSolver::build(sc, c.mesh);
       const System sys = assemble(m);
-      Vector6d fz = Vector6d::Zero();
-      fz[2] = 1;
       const auto& fr = *sc.request.frf;
-      const Eigen::Vector3d pe = sc.is_beam() ? Eigen::Vector3d(fr.excite[0], 0, 0) : Eigen::Vector3d(fr.excite[0], fr.excite[1], 0);
-      const Eigen::Vector3d po = sc.is_beam() ? Eigen::Vector3d(fr.observe[0], 0, 0) : Eigen::Vector3d(fr.observe[0], fr.observe[1], 0);
-      const Eigen::VectorXd f = point_load(m, sys, pe, fz), g = point_observer(m, sys, po, 2);
+      const FrfPoints at = frf_points(sc, m, sys);
+      const Eigen::VectorXd& f = at.f;
+      const Eigen::VectorXd& g = at.g;
       std::vector<double> omegas;
       for (int i = 0; i < fr.points; ++i) omegas.push_back(fr.omega_min + (fr.omega_max - fr.omega_min) * i / (fr.points - 1));
       ProjectedFrfOptions po_opt;

@@ -64,6 +64,73 @@ std::vector<double> slice_spectrum(const std::function<int(double)>& count, int 
 }
 
 
+namespace {
+
+struct Bracket {
+  double lo, hi;
+  CountDet a, b;
+};
+
+[[noreturn]] void not_monotonic(double lambda) {
+  throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +
+                           std::to_string(lambda) + ")");
+}
+
+/// The one eigenvalue in (iv.lo, iv.hi) (counts n and n + 1 at the ends).
+double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, double rel_tol, double abs_tol) {
+  const int n = iv.a.count;
+  auto tol_of = [&](double lo, double hi) { return std::max(rel_tol * std::max(std::abs(lo), std::abs(hi)), abs_tol); };
+  // Every evaluation narrows the bracket by its count, whatever the determinant says.
+  auto record = [&](double lam, const CountDet& cd) {
+    if (cd.count == n) {
+      if (lam > iv.lo) iv = {lam, iv.hi, cd, iv.b};
+    } else if (cd.count == n + 1) {
+      if (lam < iv.hi) iv = {iv.lo, lam, iv.a, cd};
+    } else {
+      not_monotonic(lam);
+    }
+  };
+  for (;;) {
+    if (iv.hi - iv.lo <= tol_of(iv.lo, iv.hi)) return 0.5 * (iv.lo + iv.hi);
+    if (std::isfinite(iv.a.log_abs_det) && std::isfinite(iv.b.log_abs_det)) {
+      const double ref = std::max(iv.a.log_abs_det, iv.b.log_abs_det);
+      auto signed_det = [&](const CountDet& cd) {
+        const double mag = std::exp(std::clamp(cd.log_abs_det - ref, -600.0, 600.0));
+        return cd.count == n ? mag : -mag;
+      };
+      // Near the root the determinant reaches its rounding floor: the same value again at a
+      // different lambda means further steps only sample noise. But a step from a bracket end
+      // shorter than the lambda resolution of K repeats that end's value too (the secant lands
+      // there when |det| spans many orders of magnitude across the bracket, as next to a dense
+      // cluster of modes: a 30 m plate strip's (m, 1) family); only the count can tell the two.
+      bool stalled = false;
+      std::vector<double> seen = {iv.a.log_abs_det, iv.b.log_abs_det};
+      auto g = [&](double lam) {
+        const CountDet cd = E(lam);
+        record(lam, cd);
+        if (std::find(seen.begin(), seen.end(), cd.log_abs_det) != seen.end()) stalled = true;
+        seen.push_back(cd.log_abs_det);
+        return signed_det(cd);
+      };
+      const Bracket start = iv;
+      const BracketedRoot root =
+          bracketed_root(g, start.lo, start.hi, signed_det(start.a), signed_det(start.b), tol_of(start.lo, start.hi),
+                         8.0 * std::numeric_limits<double>::epsilon(), 200, [&] { return stalled; });
+      const double estimate = std::clamp(root.root, iv.lo, iv.hi);
+      if (root.converged) return estimate;
+      // Stopped: accepted only where the count confirms the estimate to the rounding floor of a
+      // well-resolved root (the bracket the counts leave is itself that narrow).
+      if (iv.hi - iv.lo <= kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi))) return estimate;
+    }
+    // Otherwise one bisection on the count, then Brent again on the half that holds the root.
+    const double mid = 0.5 * (iv.lo + iv.hi);
+    if (!(mid > iv.lo && mid < iv.hi)) return mid;  // adjacent doubles: nothing left to split
+    record(mid, E(mid));
+  }
+}
+
+}  // namespace
+
 std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
                                             double lambda_hi, double rel_tol, double abs_tol, SliceStats* stats) {
   std::vector<double> out;
@@ -73,11 +140,7 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
     ++evals;
     return eval(lam);
   };
-  struct Interval {
-    double lo, hi;
-    CountDet a, b;
-  };
-  std::vector<Interval> stack = {{lambda_lo, lambda_hi, E(lambda_lo), E(lambda_hi)}};
+  std::vector<Bracket> stack = {{lambda_lo, lambda_hi, E(lambda_lo), E(lambda_hi)}};
   if (stack[0].b.count < stack[0].a.count)
     throw std::runtime_error("spectrum slicing: count decreases between lambda_lo and lambda_hi");
   auto narrow = [&](double lo, double hi) {
@@ -85,7 +148,7 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
   };
   std::vector<std::pair<double, int>> found;
   while (!stack.empty()) {
-    Interval iv = stack.back();
+    const Bracket iv = stack.back();
     stack.pop_back();
     const int n = iv.b.count - iv.a.count;
     if (n <= 0) continue;
@@ -93,38 +156,13 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
       found.emplace_back(0.5 * (iv.lo + iv.hi), n);
       continue;
     }
-    if (n == 1 && std::isfinite(iv.a.log_abs_det) && std::isfinite(iv.b.log_abs_det)) {
-      // Isolated: the signed determinant changes sign exactly once in (lo, hi).
-      const int n_lo = iv.a.count;
-      const double ref = std::max(iv.a.log_abs_det, iv.b.log_abs_det);
-      auto signed_det = [&](const CountDet& cd) {
-        if (cd.count != n_lo && cd.count != n_lo + 1)
-          throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown)");
-        const double mag = std::exp(std::clamp(cd.log_abs_det - ref, -600.0, 600.0));
-        return cd.count == n_lo ? mag : -mag;
-      };
-      // Near the root the determinant reaches its rounding floor: the same value again at a
-      // different lambda means further steps only sample noise.
-      bool stalled = false;
-      std::vector<double> seen = {iv.a.log_abs_det, iv.b.log_abs_det};
-      auto g = [&](double lam) {
-        const CountDet cd = E(lam);
-        if (std::find(seen.begin(), seen.end(), cd.log_abs_det) != seen.end()) stalled = true;
-        seen.push_back(cd.log_abs_det);
-        return signed_det(cd);
-      };
-      const double tol = std::max(rel_tol * std::max(std::abs(iv.lo), std::abs(iv.hi)), abs_tol);
-      const BracketedRoot root = bracketed_root(g, iv.lo, iv.hi, signed_det(iv.a), signed_det(iv.b), tol,
-                                                8.0 * std::numeric_limits<double>::epsilon(), 200,
-                                                [&] { return stalled; });
-      found.emplace_back(std::clamp(root.root, iv.lo, iv.hi), 1);
+    if (n == 1) {
+      found.emplace_back(polish_isolated(E, iv, rel_tol, abs_tol), 1);
       continue;
     }
     const double mid = 0.5 * (iv.lo + iv.hi);
     const CountDet cm = E(mid);
-    if (cm.count < iv.a.count || cm.count > iv.b.count)
-      throw std::runtime_error("spectrum slicing: count is not monotonic (numerical breakdown near lambda = " +
-                               std::to_string(mid) + ")");
+    if (cm.count < iv.a.count || cm.count > iv.b.count) not_monotonic(mid);
     stack.push_back({mid, iv.hi, cm, iv.b});
     stack.push_back({iv.lo, mid, iv.a, cm});
   }

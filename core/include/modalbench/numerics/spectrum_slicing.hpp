@@ -37,8 +37,19 @@ struct CountDet {
 /// method (root_finding.hpp: GSL) on the signed determinant (-1)^count |det K| (continuous
 /// there: `eval` must use one discretization for every lambda in the range, so that det has no
 /// pole and no jump).
+/// Every evaluation of the polish narrows its bracket by the count, whatever the determinant
+/// says. A polish that stops on a repeated determinant value (its rounding floor) is accepted
+/// only when the counts bracket the root to kPolishFloor relative; otherwise it bisects once on
+/// the count and polishes again (a Brent step shorter than K's lambda resolution repeats a
+/// bracket end's value too: a 30 m plate strip's first mode came out as a bracket end, 1246.13
+/// instead of 1244.9 rad/s).
 /// Intervals narrower than rel_tol (relative; abs_tol near zero) with several eigenvalues give
 /// them as a repeated value. Throws std::runtime_error if the count is not monotonic.
+/// How tightly (relative) the counts must bracket a root whose polish stopped at the
+/// determinant's rounding floor: far below what a reproducibility check at 1e-4 resolves, far
+/// above the tolerance a polish normally meets.
+inline constexpr double kPolishFloor = 1e-8;
+
 std::vector<double> slice_interval_polished(const std::function<CountDet(double)>& eval, double lambda_lo,
                                             double lambda_hi, double rel_tol, double abs_tol,
                                             SliceStats* stats = nullptr);
