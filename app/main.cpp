@@ -296,7 +296,9 @@ int main(int argc, char** argv) {
       std::cout << "stability report written to " << std::filesystem::absolute(stab_dir).string()
                 << "/stability.html (and stability.md, stability.csv)\n";
       if (bad > 0) {
-        std::cerr << "modalbench: " << bad << " run(s) claimed success with non-finite, missing or unordered numbers\n";
+        std::cerr << "modalbench: " << bad
+                  << " run(s) claimed success with non-finite, missing or unordered numbers, or beyond their own error "
+                     "estimate of the exact values\n";
         return 3;
       }
       return 0;

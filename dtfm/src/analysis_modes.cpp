@@ -73,9 +73,9 @@ double LineAnalysis::family_share(ClassLine& c, double lambda) {
 /// g = a^T B^T E^-1 B a / lambda_E. Their sum is each value's bound.
 ///
 /// Every value below the count's threshold is taken with its bound (the solver flags a loose one);
-/// above it, the lowest ones are taken while their bound is within the polish tolerance and they
-/// lie far below lambda_E, and the class is then sliced from a point between them and lambda_E
-/// whose count must agree.
+/// above it, the lowest ones are taken while their bound beats what the count resolves there (or
+/// the polish tolerance) and they lie far below lambda_E, and the class is then sliced from a
+/// point between them and lambda_E whose count must agree.
 LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   NearRigid out;
   out.rigid = below;
@@ -86,7 +86,6 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   if (!rl) return out;  // no rigid motions of its own (plates): below the threshold is rigid
   const int n_near = below - rl->unrestrained;  // near-rigid ones below the threshold
   const Eigen::Index rf = static_cast<Eigen::Index>(rl->free_a.size());
-  if (rf == 0) return out;
   auto fail = [&](const std::string& why) {
     if (n_near > 0)
       out.problem = fmt::format("{} mode(s) of the {} family below {:g} of the stiffness scale are not rigid-body "
@@ -94,6 +93,7 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
                                 n_near, to_string(c0.family), kRigidThreshold, why);
     return out;
   };
+  if (rf == 0 && n_near <= 0) return out;
   if (n_near < 0 || n_near > rf)
     return fail(fmt::format("the count finds {} below the threshold, the supports leave {} rigid motion(s) free and "
                             "restrain {}", below, rl->unrestrained, rf));

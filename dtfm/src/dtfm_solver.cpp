@@ -24,6 +24,11 @@ Discretization DtfmSolver::default_mesh(const Scene& scene) const {
   return Discretization{{std::clamp(6 * (n_max + 1), 10, 400)}};
 }
 
+std::optional<Discretization> DtfmSolver::theory_mesh(const Scene& scene) const {
+  if (scene.is_plate()) return default_mesh(scene);
+  return Discretization::parse("1x1");
+}
+
 std::optional<CoarserMesh> DtfmSolver::coarser_mesh(const Scene& scene, const Discretization& mesh, const Options&) const {
   if (scene.is_plate()) {
     if (mesh.counts.size() != 1 || mesh.counts[0] < 4) return std::nullopt;

@@ -43,6 +43,14 @@ BOOST_AUTO_TEST_CASE(verdicts) {
   off.mode_families = ex.mode_families;
   off.frequencies_rad_s[3] *= 1.01;
   BOOST_TEST(judge(c, "x", {}, off, &ex).max_error_vs_exact == 0.01, boost::test_tools::tolerance(1e-9));
+  // A success 1 % off with no estimate of its own claims the tolerance (1e-3): wrong, unflagged.
+  BOOST_TEST((judge(c, "x", {}, off, &ex).verdict == Verdict::UnflaggedBad));
+  // With an estimate that covers the error it is what it says it is.
+  Result estimated = off;
+  estimated.summary.error_estimate.frequencies = 0.02;
+  BOOST_TEST((judge(c, "x", {}, estimated, &ex).verdict == Verdict::Ok));
+  estimated.summary.error_estimate.frequencies = 0.005;
+  BOOST_TEST((judge(c, "x", {}, estimated, &ex).verdict == Verdict::UnflaggedBad));
 }
 
 BOOST_AUTO_TEST_CASE(quick_sweep_exact_has_no_unflagged_bad_rows) {
@@ -51,6 +59,8 @@ BOOST_AUTO_TEST_CASE(quick_sweep_exact_has_no_unflagged_bad_rows) {
   const auto rows = run_stability(stability_cases(true), reg, nullptr);
   BOOST_TEST(!rows.empty());
   for (const auto& r : rows) {
+    // Plates with free edges have no closed form the exact back-end solves: it says so.
+    if (r.group == "plates" && r.verdict == Verdict::Refused) continue;
     BOOST_TEST((r.verdict == Verdict::Ok), r.label << ": " << to_string(r.verdict) << " " << r.detail);
     BOOST_TEST(r.returned == r.requested);
   }

@@ -93,6 +93,8 @@ inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 ///   e1 = |q_h - q_H| / (r^p - 1)                      (Richardson on the finest pair)
 ///   e2 = |q_H - q_2H| / (r'^p - 1) / r^p              (the coarser pair's estimate, carried to h)
 ///   estimate = max(3 e1, 1.25 e2) + the solve's own error bound
+/// with p the family's formal order, or, for a frequency whose three meshes show a lower one
+/// (differences above the solve's rounding), that observed order (at least 1/4).
 /// 3 is Roache's factor of safety for a two-mesh estimate with the formal order p (a grid
 /// convergence index), 1.25 his factor where a third mesh backs it. The guard e2 is there because
 /// errors that change sign between meshes (two error terms of opposite signs: a Mindlin plate at

@@ -129,6 +129,11 @@ class Solver {
   virtual std::vector<Discretization> mesh_ladder(const Scene& scene) const { return {default_mesh(scene)}; }
   /// The back-end's options (scene table [backend.NAME], command line --option KEY=VALUE).
   virtual std::vector<OptionSpec> option_specs() const { return {}; }
+  /// The mesh on which this back-end's model is the scene's own theory (the Euler-Bernoulli or
+  /// Timoshenko beam, the Kirchhoff or Mindlin plate), for sweeps that judge it against the exact
+  /// solution of that theory; nullopt where no mesh is (an Euler-Bernoulli chain on a Timoshenko
+  /// scene: that is model error, not stability). Default: the default mesh.
+  virtual std::optional<Discretization> theory_mesh(const Scene& scene) const { return default_mesh(scene); }
   /// The largest meshes worth trying in the stability sweep (default: the finest of the ladder).
   virtual std::vector<Discretization> stress_meshes(const Scene& scene) const { return {mesh_ladder(scene).back()}; }
   /// Peak memory and time the request (scene, mesh) is estimated to need. May throw InputError

@@ -65,6 +65,12 @@ class DifferenceEqSolver final : public Solver {
   /// The smallest multiple of every load's and probe's denominator (in units of L) with
   /// R >= max(32, 8 modes); falls back to 64 when the positions are not commensurate.
   Discretization default_mesh(const Scene& scene) const override;
+  /// The default mesh on Euler-Bernoulli beams in bending (x-z); nullopt otherwise (model error).
+  std::optional<Discretization> theory_mesh(const Scene& scene) const override {
+    if (!scene.is_beam() || scene.theory != Theory::EulerBernoulli || scene.physics != Physics::Bending)
+      return std::nullopt;
+    return default_mesh(scene);
+  }
   /// R = base, 2 base, 4 base, ... from >= 4 up to <= 4096 (base puts loads and probes on nodes).
   std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
   /// The stability sweep's largest meshes: the ladder's top and the largest multiple of the

@@ -53,6 +53,8 @@ class DtfmSolver final : public Solver {
   Capability supports(const Scene& scene) const override;
   /// Beam: "2x2" (the paper's four prisms); plate: "10" strips.
   Discretization default_mesh(const Scene& scene) const override;
+  /// Beam: one prism (the scene's beam theory itself); plate: the default strips.
+  std::optional<Discretization> theory_mesh(const Scene& scene) const override;
   /// Beam: 1x1, 2x2, 4x4, 8x8 (spatial physics: up to 6x6); plate: 4, 7, 10, 20, 40 strips.
   std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
   std::vector<Discretization> stress_meshes(const Scene& scene) const override;

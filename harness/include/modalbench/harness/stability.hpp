@@ -1,8 +1,11 @@
 #pragma once
-// The stability sweep: slenderness 1 ... 1e4, dimensionless support stiffness 1e-6 ... 1e12,
-// each back-end's largest meshes, and high modes (up to the 100th). For every case each
-// back-end must return a finite, correctly counted, ordered result or a clear refusal; the
-// report lists what the diagnostics flag. Nothing non-finite may pass unflagged.
+// The stability sweep: slenderness L/h 0.5 ... 1e5 (Timoshenko and Euler-Bernoulli), each of the
+// four end springs alone from K = 1e-12 to 1e15 (and all four together), free and cantilever
+// plates, high modes (the 1000th of a beam, the 100th of a plate), each back-end's largest
+// meshes. Each back-end runs where its model is the scene's theory (Solver::theory_mesh), with its
+// own error estimate; every run must return a finite, correctly counted, ordered result within
+// its own estimate of the exact one, or say why not (flagged, refused). Nothing wrong may pass
+// unflagged.
 
 #include <ostream>
 #include <string>
@@ -15,7 +18,7 @@
 namespace modalbench {
 
 struct StabilityCase {
-  std::string group;  ///< slenderness | springs | high-modes | size
+  std::string group;  ///< slenderness | springs | high-modes | plates | size
   std::string label;
   Scene scene;
   bool stress_meshes = false;  ///< use each back-end's stress_meshes() instead of its default mesh
