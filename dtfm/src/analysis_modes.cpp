@@ -309,7 +309,10 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
       out.family_share.push_back(1.0);
       continue;
     }
-    const double share = family_share(line, f.lambda);
+    // One prism cannot deform in its section: every mode of a class is of its family (the share's
+    // inverse iteration loses its digits next to springs of 1e12 EI / L^3 and mislabelled them).
+    const bool one_prism = model_.kind == SceneKind::Beam && model_.prisms.size() == 1;
+    const double share = one_prism ? 1.0 : family_share(line, f.lambda);
     out.family_share.push_back(share);
     out.family.push_back(share >= ctl_.family_threshold ? line.family : ModeFamily::Unknown);
   }

@@ -158,7 +158,8 @@ StabilityRow judge(const StabilityCase& c, const std::string& backend, const Dis
   for (double w : r.frequencies_rad_s) finite = finite && std::isfinite(w);
   for (const auto& d : r.deflections) finite = finite && std::isfinite(d.w) && std::isfinite(d.theta_y);
   const bool ordered = std::is_sorted(r.frequencies_rad_s.begin(), r.frequencies_rad_s.end());
-  if (r.summary.status == Status::Unsupported || r.summary.status == Status::InvalidInput) {
+  if (r.summary.status == Status::Unsupported || r.summary.status == Status::InvalidInput ||
+      r.summary.status == Status::ResourceLimit) {
     row.verdict = Verdict::Refused;
     row.detail = r.summary.message;
     return row;
@@ -187,7 +188,7 @@ StabilityRow judge(const StabilityCase& c, const std::string& backend, const Dis
   }
   // A success claims its numbers to its own error estimate (or, without one, to the tolerance):
   // beyond that, and beyond the exact reference's own accuracy, it is wrong without a flag.
-  if (r.summary.status == Status::Success && std::isfinite(row.max_error_vs_exact)) {
+  if (r.summary.status == Status::Success && r.summary.converges_to_scene_theory && std::isfinite(row.max_error_vs_exact)) {
     const double est = r.summary.error_estimate.frequencies;
     const double claimed = std::isfinite(est) ? est : c.scene.request.tolerance;
     if (row.max_error_vs_exact > claimed + 1e-9)
