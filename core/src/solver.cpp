@@ -622,6 +622,15 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     if (verdict) {
       sum.error_estimate = verdict->first;
       for (const auto& p : verdict->second) sum.raise(Status::NotConverged, p);
+    } else if (wants_estimate && !coarse) {
+      // No mesh to compare with (the model is solved on exact segments: a one-prism dtfm beam), but
+      // the solve's own bound (near-rigid modes): that is the estimate.
+      const double solve = sum.diagnostic("frequency_solve_error_bound");
+      if (std::isfinite(solve)) {
+        sum.error_estimate.frequencies = sum.error_estimate.frequencies_solve = solve;
+        sum.error_estimate.tolerance = scene.request.tolerance;
+        sum.error_estimate.note = "no discretization error to estimate (exact segments): the solve's own bound";
+      }
     }
     for (auto& w : estimate_warnings) sum.warnings.push_back(std::move(w));
     sum.timings_s.error_estimate = estimate_time;

@@ -653,3 +653,22 @@ BOOST_AUTO_TEST_CASE(near_rigid_modes_above_the_count_threshold) {
   for (int i = 0; i < 2; ++i) BOOST_TEST(rel(p.frequencies_rad_s[i], e.frequencies_rad_s[i]) <= bound);
   BOOST_TEST(rel(p.frequencies_rad_s[2], e.frequencies_rad_s[2]) < 1e-8);
 }
+
+// Fuzz finding (case 1239): the Lasecka beam with E = 2e17 (its springs then 4e-5 of EI / L^3).
+// The heave on the springs was sliced 1.05e-5 off in omega^2 by the count; the rigid-body
+// Rayleigh-Ritz encloses the true value in [l_RR / (1 + b), l_RR] and replaces a sliced value
+// outside it. Its bound is the result's error estimate (one prism: nothing to refine).
+BOOST_AUTO_TEST_CASE(sliced_values_outside_their_ritz_enclosure_are_replaced) {
+  Scene s = eb_beam(4.0, 0.1, 0.2, 2e17, 7850, springs(8333333.333333333, 16666666.666666666),
+                    springs(2083333.3333333333, 0.0));
+  s.request.modes = 8;  // its slicing mesh is set for the 8th mode
+  const Result e = run("exact", s);
+  BOOST_TEST(e.ok(), e.summary.message);
+  const Result p = registry().get("dtfm").solve(s, Discretization::parse("1x1"), Options{});  // with its estimate
+  BOOST_TEST(to_string(p.summary.status) == "success", p.summary.message);
+  BOOST_REQUIRE(p.frequencies_rad_s.size() == 8u);
+  BOOST_REQUIRE(e.frequencies_rad_s.size() == 8u);
+  const double est = p.summary.error_estimate.frequencies;
+  BOOST_TEST(est < 1e-5);
+  for (int i = 0; i < 8; ++i) BOOST_TEST(rel(p.frequencies_rad_s[i], e.frequencies_rad_s[i]) <= est);
+}

@@ -144,8 +144,11 @@ class LineAnalysis {
     std::vector<double> lambdas;   ///< near-rigid omega^2, ascending
     double bound = 0;              ///< their largest estimated relative error
     std::string problem;           ///< why they could not be resolved (then all `below` are in `rigid`)
-    double lo = 0;                 ///< the class is sliced from here (the threshold, or above the near-rigid ones)
+    double lo = 0;                 ///< the class is sliced from here (the threshold)
     int below_lo = 0;              ///< its count at lo
+    /// Above the threshold: Ritz values l_RR with bounds b enclosing the class's lowest sliced
+    /// values in [l_RR / (1 + b), l_RR]; a sliced value outside is replaced.
+    std::vector<std::pair<double, double>> enclosures;
   };
   NearRigid near_rigid(ClassLine& c, int below);
   /// The shapes of the modes `which` (one class, one lambda; 0: rigid) into `out` (shapes.cpp).
