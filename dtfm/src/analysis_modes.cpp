@@ -223,19 +223,14 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
     out.bound = std::max(out.bound, bound[static_cast<std::size_t>(i)]);
   }
   out.rigid = rl->unrestrained;
-  // Above it, while the bound beats what the count can resolve there (eps times K's largest
-  // stiffness over lambda times the mass: a rocking on 1.9 N/m beside 8e18 N/m came out 6.8e-7
-  // off by the count), or the polish tolerance, and lambda_E lies far above.
-  const double mass = Mr.diagonal().maxCoeff();
-  const double stiff = std::max(piv.maxCoeff(), model_.lambda_scale * mass);
+  // Above it: those whose bound is tight (1e-5) and which lie far below lambda_E become enclosures
+  // of the sliced values (the count's own resolution there is not known: a rocking on 1.9 N/m
+  // beside 8e18 N/m was sliced 6.8e-7 off, a heave beside springs of 4e-5 EI / L^3 1.05e-5 off,
+  // a torsion on 1.5 N m / rad 2.4e-7 off).
   int n_acc = n_near;
   for (; n_acc < rf; ++n_acc) {
     const double lam = ritz[static_cast<std::size_t>(n_acc)], b = bound[static_cast<std::size_t>(n_acc)];
-    // eps K / (lambda M) is what the count can never beat; it does 1e3 to 1e4 times worse (a beam on
-    // springs of 1e-6 EI / L^3: heave and rocking sliced 1.2e-5 and 5.8e-6 off in omega^2, where
-    // this floor is 1.1e-8 and 7.2e-10).
-    const double count_floor = 1e4 * std::numeric_limits<double>::epsilon() * stiff / (lam * mass);
-    if (!(b <= 1e-5 && b <= std::max(ctl_.rel_tol, count_floor) && lam <= 1e-4 * lambda_e)) break;
+    if (!(b <= 1e-5 && lam <= 1e-4 * lambda_e)) break;
   }
   if (n_acc > n_near) {
     // Between the last one taken and the next Ritz value (or lambda_E).
@@ -327,11 +322,13 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
           &st);
       for (std::size_t j = 0; j < vals.size(); ++j) {
         if (j < near[c].enclosures.size()) {
+          // Inside its enclosure a sliced value is known to b as well (the count that placed it is
+          // the one in doubt here), so b is its bound either way.
           const auto [ritz, b] = near[c].enclosures[j];
+          out.near_rigid_bound = std::max(out.near_rigid_bound, b);
+          ++out.near_rigid;
           if (vals[j] < ritz / (1.0 + b) || vals[j] > ritz * (1.0 + 1e-12)) {
             all.push_back({ritz, c, true});
-            ++out.near_rigid;
-            out.near_rigid_bound = std::max(out.near_rigid_bound, b);
             continue;
           }
         }
