@@ -243,6 +243,40 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   return out;
 }
 
+/// A beam's line is one segment: its poles (the segment's clamped-clamped frequencies) are the
+/// zeros of a free-free Euler-Bernoulli span exactly, and nearly those of a span on very soft or
+/// very stiff springs. At such a root K(lambda) is rounded relative to the pole's size, and the
+/// count placed it 1e-8 off (a beam on springs of 1e-12 EI/L^3: mode 4 3.8e-9 off in omega with
+/// a bound of 1.5e-12). Each value with a segment pole within kPoleGap of it (the segments' J0
+/// differs across that interval) is sliced again there on the line cut at its golden section: two
+/// segments of incommensurate lengths, whose poles lie elsewhere (halves would not do: a pinned
+/// span's odd modes approach their clamped-clamped ones exponentially). The cut is not used
+/// throughout: its shorter segments are stiffer, and a near-rigid mode's count resolves it less
+/// well (a rocking on springs of 4e-5 EI/L^3 came out 9e-6 off instead of within 1.4e-6).
+void LineAnalysis::repolish_near_poles(ClassLine& c, const Mesh& mesh, double lambda_max, std::vector<double>& vals,
+                                       ModeList& out, SliceStats* st) {
+  constexpr double kPoleGap = 1e-4;
+  Mesh cut;
+  for (std::size_t j = 0; j < vals.size(); ++j) {
+    const double lo = vals[j] * (1 - kPoleGap), hi = vals[j] * (1 + kPoleGap);
+    if (!(lo > 0) || assemble(c, lo, mesh).info.clamped_below == assemble(c, hi, mesh).info.clamped_below) continue;
+    if (cut.x.empty()) cut = mesh_for(c, lambda_max, {0.5 * (std::sqrt(5.0) - 1.0) * model_.length});
+    const auto again = slice_interval_polished([&](double lam) { return count_det(c, lam, cut); }, lo, hi,
+                                               ctl_.rel_tol, 0.0, st);
+    std::size_t here = 0;
+    for (double v : vals) here += v >= lo && v < hi;
+    if (again.size() == 1 && here == 1) {
+      vals[j] = again[0];
+    } else {
+      out.count_consistent = false;
+      out.count_message += fmt::format(
+          "{}mode at {:.6g} rad/s lies within {:g} of a segment's pole and the cut line counts {} value(s) there, "
+          "not {}",
+          out.count_message.empty() ? "" : "; ", std::sqrt(vals[j]), kPoleGap, again.size(), here);
+    }
+  }
+}
+
 ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   ModeList out;
   if (k <= 0) return out;
@@ -317,9 +351,11 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   if (rigid < k) {
     for (int c : cls) {
       SliceStats st;
-      const auto vals = slice_interval_polished(
+      auto vals = slice_interval_polished(
           [&](double lam) { return count_det(*lines_[c], lam, mesh[c]); }, near[c].lo, hi, ctl_.rel_tol, 1e-14 * scale,
           &st);
+      if (model_.kind == SceneKind::Beam) repolish_near_poles(*lines_[c], mesh[c], hi, vals, out, &st);
+      out.polish_floor_width = std::max(out.polish_floor_width, st.polish_floor_width);
       for (std::size_t j = 0; j < vals.size(); ++j) {
         if (j < near[c].enclosures.size()) {
           // Inside its enclosure a sliced value is known to b as well (the count that placed it is

@@ -175,11 +175,15 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
       sum.warnings.push_back(fmt::format(
           "{} mode(s) labelled unknown: their rigid-section share of kinetic energy is below one half", unknown));
     if (!ml.count_consistent) sum.raise(Status::NumericalIssue, "dtfm: " + ml.count_message);
+    // The solve's own error bound on the frequencies (half the eigenvalues'): the near-rigid
+    // modes' Rayleigh-Ritz bound and the bracket of any value polished only to the determinant's
+    // rounding floor.
+    if (ml.near_rigid > 0 || ml.polish_floor_width > 0)
+      sum.set_diagnostic("frequency_solve_error_bound", 0.5 * std::max(ml.near_rigid_bound, ml.polish_floor_width));
+    if (ml.polish_floor_width > 0) sum.set_diagnostic("polish_floor_frequency_error_bound", 0.5 * ml.polish_floor_width);
     if (ml.near_rigid > 0) {
-      // Near-rigid modes: their own error bound (half the eigenvalues') is the solve's.
       const double bound = 0.5 * ml.near_rigid_bound;
       sum.set_diagnostic("near_rigid_frequency_error_bound", bound);
-      sum.set_diagnostic("frequency_solve_error_bound", bound);
       if (!(bound <= 1e-2 * scene.request.tolerance))
         sum.raise(Status::NumericalIssue,
                   fmt::format("dtfm: {} near-rigid mode(s): their rigid-body Rayleigh-Ritz frequencies are only known "

@@ -270,6 +270,31 @@ BOOST_AUTO_TEST_CASE(free_free_beam_keeps_its_two_rigid_modes) {
   BOOST_TEST(rel(r.frequencies_rad_s[2], w1) < 1e-9);
 }
 
+// A one-segment line has its poles (the segment's clamped-clamped frequencies) at a free-free
+// Euler-Bernoulli span's zeros: the count placed mode 4 of a beam on springs of 1e-12 EI/L^3
+// 3.8e-9 off with a bound of 1.5e-12 (stability sweep). Reference: the roots of
+// cosh(bL) cos(bL) = 1 (mpmath, 17 digits); springs of 1e-12 move them by about 1e-12.
+BOOST_AUTO_TEST_CASE(dtfm_free_and_nearly_free_spans_keep_their_elastic_modes) {
+  const double L = 1.0, EI = 2e11 * 1e-8 / 12, m = 7850 * 1e-4;
+  const double bl[4] = {4.730040744862704, 7.8532046240958376, 10.995607838001671, 14.137165491257464};
+  for (double K : {0.0, 1e-12}) {
+    BOOST_TEST_CONTEXT("K = " << K) {
+      const Support end = K == 0.0 ? Support::named("free") : springs(K * EI / (L * L * L), K * EI / L);
+      Scene s = eb_beam(L, 0.01, 0.01, 2e11, 7850, end, end);
+      s.loads.clear();
+      s.request.probes.clear();
+      s.request.modes = 6;
+      const Result r = run("dtfm", s, "1x1");
+      BOOST_TEST(to_string(r.summary.status) == "success", r.summary.message);
+      BOOST_REQUIRE(r.frequencies_rad_s.size() == 6u);
+      for (int i = 0; i < 4; ++i) {
+        const double w = bl[i] * bl[i] * std::sqrt(EI / (m * L * L * L * L));
+        BOOST_TEST(rel(r.frequencies_rad_s[2 + i], w) < 2e-11, "mode " << 3 + i << ": " << r.frequencies_rad_s[2 + i]);
+      }
+    }
+  }
+}
+
 // Issue 13 (2): near-mechanism statics. L = 2 m, 0.05 x 0.1 m, E = 200 GPa; x0 springs of
 // K = k L^3 / EI = 1e-6 and Kr = chi L / EI = 1e-6, xL translational K = 1e12, rotation free;
 // 1000 N at x = 0, 0.2, ..., 2. The difference_eq closed form is the reference.

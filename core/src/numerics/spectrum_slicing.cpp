@@ -76,8 +76,11 @@ struct Bracket {
                            std::to_string(lambda) + ")");
 }
 
-/// The one eigenvalue in (iv.lo, iv.hi) (counts n and n + 1 at the ends).
-double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, double rel_tol, double abs_tol) {
+/// The one eigenvalue in (iv.lo, iv.hi) (counts n and n + 1 at the ends). `floor_width` gets the
+/// relative width of the counts' bracket where the polish stopped at the determinant's rounding
+/// floor (the value's error bound then), else stays as it was.
+double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, double rel_tol, double abs_tol,
+                       double& floor_width) {
   const int n = iv.a.count;
   auto tol_of = [&](double lo, double hi) { return std::max(rel_tol * std::max(std::abs(lo), std::abs(hi)), abs_tol); };
   // Every evaluation narrows the bracket by its count, whatever the determinant says.
@@ -119,8 +122,11 @@ double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, dou
       const double estimate = std::clamp(root.root, iv.lo, iv.hi);
       if (root.converged) return estimate;
       // Stopped: accepted only where the count confirms the estimate to the rounding floor of a
-      // well-resolved root (the bracket the counts leave is itself that narrow).
-      if (iv.hi - iv.lo <= kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi))) return estimate;
+      // well-resolved root (the bracket the counts leave is itself that narrow, and is its bound).
+      if (iv.hi - iv.lo <= kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi))) {
+        floor_width = std::max(floor_width, (iv.hi - iv.lo) / std::max(std::abs(iv.lo), std::abs(iv.hi)));
+        return estimate;
+      }
     }
     // Otherwise one bisection on the count, then Brent again on the half that holds the root.
     const double mid = 0.5 * (iv.lo + iv.hi);
@@ -157,7 +163,9 @@ std::vector<double> slice_interval_polished(const std::function<CountDet(double)
       continue;
     }
     if (n == 1) {
-      found.emplace_back(polish_isolated(E, iv, rel_tol, abs_tol), 1);
+      double floor_width = 0;
+      found.emplace_back(polish_isolated(E, iv, rel_tol, abs_tol, floor_width), 1);
+      if (stats) stats->polish_floor_width = std::max(stats->polish_floor_width, floor_width);
       continue;
     }
     const double mid = 0.5 * (iv.lo + iv.hi);

@@ -20,6 +20,10 @@ namespace modalbench {
 struct SliceStats {
   long count_evaluations = 0;
   long max_unknowns = 0;  ///< largest system the counts factorized (filled by callers that know it)
+  /// slice_interval_polished: the largest relative width (hi - lo) / hi of the counts' bracket
+  /// around a value whose polish stopped at the determinant's rounding floor (0 if none did): a
+  /// bound on those values' relative error in lambda, far above rel_tol.
+  double polish_floor_width = 0;
 };
 std::vector<double> slice_spectrum(const std::function<int(double)>& count, int k, double lambda_lo,
                                    double lambda_hint, double rel_tol = 1e-13, SliceStats* stats = nullptr);

@@ -69,6 +69,9 @@ struct ModeList {
   /// springs, analysis_modes.cpp).
   int near_rigid = 0;
   double near_rigid_bound = 0;
+  /// The largest relative bracket (in omega^2) of a sliced value whose polish stopped at the
+  /// determinant's rounding floor (spectrum_slicing.hpp, kPolishFloor); 0 if none did.
+  double polish_floor_width = 0;
 };
 
 class LineAnalysis {
@@ -136,6 +139,8 @@ class LineAnalysis {
   Assembled assemble(const ClassLine& c, double lambda, const Mesh& mesh);
   ComplexBlockTridiagonal assemble(const ClassLine& c, std::complex<double> lambda, const Mesh& mesh);
   CountDet count_det(const ClassLine& c, double lambda, const Mesh& mesh);
+  void repolish_near_poles(ClassLine& c, const Mesh& mesh, double lambda_max, std::vector<double>& vals,
+                           ModeList& out, SliceStats* st);
   double family_share(ClassLine& c, double lambda);
   /// The lowest eigenvalues of class c, `below` of them under the count's threshold: rigid-body
   /// modes and near-rigid ones (analysis_modes.cpp).
