@@ -207,22 +207,33 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   const Eigen::Index N = static_cast<Eigen::Index>(nc) * mc;
 
   // The null space by inverse iteration (orthonormalized block), just above the root (below 0
-  // for the rigid modes: K is then positive definite, the rigid motions its smallest part).
-  const double shift = rigid ? -kRigidThreshold * model_.lambda_scale : lambda * (1.0 + kShift);
-  const long unknowns_before = max_unknowns_;
-  const Assembled a = assemble(c, shift, mesh);
-  max_shape_unknowns_ = std::max<long>(max_shape_unknowns_, a.K.free_dofs());
-  max_unknowns_ = unknowns_before;  // the size of the modes' systems, as without shapes
+  // for the rigid modes: K is then positive definite, the rigid motions its smallest part). A
+  // root known to rounding can put K(shift) within rounding of singular (a pivot of 1e-15 of its
+  // block): the shift then moves out by factors of 100, with one more step each time (the
+  // iteration's contraction, shift / gap to the next root of the class, stays far below 1e-4).
   Eigen::MatrixXd V(N, p);
-  for (Eigen::Index i = 0; i < N; ++i)
-    for (Eigen::Index j = 0; j < p; ++j)
-      V(i, j) = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i) + 0.3 + 1.1 * static_cast<double>(j));
-  for (int step = 0; step < kInverseSteps; ++step) {
-    for (Eigen::Index j = 0; j < p; ++j) V.col(j) = a.K.solve(Eigen::VectorXd(V.col(j)), 0.0);
-    if (!V.allFinite() || V.norm() == 0.0)
-      throw std::runtime_error(fmt::format("inverse iteration broke down at omega^2 = {:.6g}", lambda));
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(V);
-    V = qr.householderQ() * Eigen::MatrixXd::Identity(N, p);
+  for (int attempt = 0;; ++attempt) {
+    const double rel = kShift * std::pow(100.0, attempt);
+    const double shift = rigid ? -kRigidThreshold * model_.lambda_scale : lambda * (1.0 + rel);
+    const long unknowns_before = max_unknowns_;
+    const Assembled a = assemble(c, shift, mesh);
+    max_shape_unknowns_ = std::max<long>(max_shape_unknowns_, a.K.free_dofs());
+    max_unknowns_ = unknowns_before;  // the size of the modes' systems, as without shapes
+    for (Eigen::Index i = 0; i < N; ++i)
+      for (Eigen::Index j = 0; j < p; ++j)
+        V(i, j) = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i) + 0.3 + 1.1 * static_cast<double>(j));
+    try {
+      for (int step = 0; step < kInverseSteps + attempt; ++step) {
+        for (Eigen::Index j = 0; j < p; ++j) V.col(j) = a.K.solve(Eigen::VectorXd(V.col(j)), 0.0);
+        if (!V.allFinite() || V.norm() == 0.0)
+          throw std::runtime_error(fmt::format("inverse iteration broke down at omega^2 = {:.6g}", lambda));
+        Eigen::HouseholderQR<Eigen::MatrixXd> qr(V);
+        V = qr.householderQ() * Eigen::MatrixXd::Identity(N, p);
+      }
+      break;
+    } catch (const std::runtime_error&) {
+      if (rigid || attempt >= 2) throw;
+    }
   }
 
   // Displacements at every base-piece node (class coordinates; the end nodes' in the ends'

@@ -131,6 +131,10 @@ class LineAnalysis {
     double h_base = 0;
     double h_im = 0, h_re = 0;  ///< the two bounds behind h_base (oscillatory, evanescent)
   };
+  struct Band {  ///< a range of lambda sliced on one mesh
+    double lo, hi;
+    Mesh mesh;
+  };
   struct Assembled;
 
   std::vector<int> pick(const std::vector<ModeFamily>& families) const;
