@@ -507,6 +507,7 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     Discretization final_mesh = mesh;
     std::optional<std::pair<ErrorEstimate, std::vector<std::string>>> verdict;
     std::vector<std::string> estimate_warnings;
+    std::string refined_note;
     double estimate_time = 0;
     if (coarse && opt.refine_to_tolerance) try {
       // The default mesh: refine until the estimate meets the tolerance (light solves only; the
@@ -576,9 +577,10 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
         estimate_warnings.push_back(fmt::format("a solve on mesh {} of the refinement was {}: {}", final_mesh.spec(),
                                                 to_string(cur.summary.status), cur.summary.message));
       estimate_time = std::chrono::duration<double>(clock::now() - tc).count();
+      // Provenance of the mesh and its estimate, not a doubt about them: said in the estimate's note.
       if (final_mesh.spec() != mesh.spec())
-        sum.warnings.push_back(fmt::format("default mesh {} refined to {} to meet the tolerance {:.2g}", mesh.spec(),
-                                           final_mesh.spec(), scene.request.tolerance));
+        refined_note = fmt::format("default mesh {} refined to {} to meet the tolerance {:.2g}", mesh.spec(),
+                                   final_mesh.spec(), scene.request.tolerance);
     } catch (const std::bad_alloc&) {
       throw;
     } catch (const std::exception& e) {
@@ -624,6 +626,7 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     }
     if (verdict) {
       sum.error_estimate = verdict->first;
+      if (!refined_note.empty()) sum.error_estimate.note = refined_note + "; " + sum.error_estimate.note;
       for (const auto& p : verdict->second) sum.raise(Status::NotConverged, p);
     } else if (wants_estimate && !coarse) {
       // No mesh to compare with (the model is solved on exact segments: a one-prism dtfm beam), but

@@ -289,6 +289,9 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
                                          between));
     for (const auto& w : st.warnings) sum.warnings.push_back(w);
     sum.set_diagnostic("support_condition", st.support_condition);
+    // Near a mechanism (support_flexibility above 1e4 L^3/EI) the deflections are mostly
+    // rigid-body motion; the closed form keeps their digits, so this is information, not a warning.
+    sum.set_diagnostic("support_flexibility", st.support_flexibility);
     sum.note_backward_error(static_residual(beam, loads, st));
     sum.timings_s.statics += timer.lap();
   }

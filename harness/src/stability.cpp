@@ -149,6 +149,7 @@ StabilityRow judge(const StabilityCase& c, const std::string& backend, const Dis
   row.label = c.label;
   row.backend = backend;
   row.mesh = mesh.spec();
+  if (!r.summary.mesh.empty() && r.summary.mesh != row.mesh) row.mesh += " → " + r.summary.mesh;  // refined
   row.status = r.summary.status;
   row.requested = c.scene.request.modes;
   row.returned = static_cast<int>(r.frequencies_rad_s.size());
@@ -237,6 +238,10 @@ std::vector<StabilityRow> run_stability(const std::vector<StabilityCase>& cases,
         // largest meshes, where it would double the cost and robustness is what is asked.
         Options opts;
         opts.estimate_error = !c.stress_meshes;
+        // On the back-end's default mesh, as a user without --mesh gets it: refined while its
+        // estimate exceeds the tolerance (within two minutes a run, so that the sweep stays short).
+        opts.refine_to_tolerance = !c.stress_meshes && m.spec() == s->default_mesh(c.scene).spec();
+        opts.max_time_s = 120;
         const Result r = s->solve(c.scene, m, opts);
         StabilityRow row = judge(c, s->name(), m, r, ex ? &*ex : nullptr);
         if (progress) *progress << fmt::format(" {} ({:.3g} s)\n", to_string(row.verdict), row.time_s);
@@ -261,7 +266,8 @@ int write_stability_report(const std::vector<StabilityRow>& rows, const std::str
         "out of order, or farther from the exact back-end than its own error estimate (this must never happen). The error "
         "column is against the exact back-end (all modes compared). Each back-end runs on the mesh where its model is the "
         "scene's theory (dtfm: one prism per beam); an Euler-Bernoulli back-end on a Timoshenko scene is model error, "
-        "not stability, and is not run.\n\n";
+        "not stability, and is not run. Where that is the back-end's default mesh, the run is refined while its error "
+        "estimate exceeds the tolerance, as `modalbench solve` without --mesh does (mesh column: default → kept).\n\n";
   std::string html = "<!doctype html><html><head><meta charset=\"utf-8\"><title>modalbench stability sweep</title><style>"
                      "body{font-family:Helvetica,Arial,sans-serif;max-width:80em;margin:1em auto}table{border-collapse:collapse}"
                      "td,th{border:1px solid #bbb;padding:2px 6px}td.n{text-align:right}.bad{background:#fbb}.flagged{background:#ffd}"

@@ -49,13 +49,16 @@ struct StaticSolution {
   double support_flexibility = 0;
   /// Condition number of the free part of K_L + S (2-norm), from accurate extreme eigenvalues.
   double support_condition = 0;
+  /// support_flexibility above kNearMechanismFlexibility: the supports restrain rigid-body motion
+  /// only weakly and the deflections are dominated by it (and scale with the springs' compliance).
+  bool near_mechanism = false;
   std::vector<std::string> warnings;
 };
 
 /// Largest R accepted by the O(R^2) eigenfunction route.
 inline constexpr long kMaxEigenfunctionR = 50000;
 
-/// Above this support flexibility (in units of L^3/EI) the result carries a near-mechanism warning.
+/// Above this support flexibility (in units of L^3/EI) the statics are a near-mechanism (StaticSolution).
 inline constexpr double kNearMechanismFlexibility = 1e4;
 
 /// Nodal deflections and slopes for nodal loads. Throws Mechanism if the springs leave a
