@@ -124,6 +124,59 @@ std::vector<double> family_shares(const Model& model, const Eigen::VectorXd& q) 
 
 namespace {
 
+/// Two steps of subspace iteration with the sparse shift-invert operator (factorized at sigma) on
+/// the full coordinates, each closed by Rayleigh-Ritz: W' (K - sigma M) W = W' M Z needs no
+/// product with K, so the refined pairs do not inherit the rounding of a reduced K formed through
+/// the constraint basis (dense path: a beam on 1e12 EI/L^3 springs, 128 segments, backward error
+/// 1e-7 -> 5e-9) nor the Lanczos tolerance on the operator's small eigenvalues (a deep beam,
+/// L/h = 0.5, 512 segments: 1.5e-7). Returns the steps completed (a failed Rayleigh-Ritz step
+/// keeps the pairs it had).
+int refine_pairs(ShiftInvertOp& op, const System& sys, double sigma, Flexible& flex) {
+  const long n = sys.n(), k = flex.lambda.size();
+  int steps = 0;
+  for (bool ok = true; steps < 2 && ok;) {
+    const Eigen::MatrixXd MZ = sys.M * flex.Z;
+    Eigen::MatrixXd W(n, k);
+    Eigen::VectorXd s(k);
+    for (long j = 0; j < k; ++j) {
+      op.perform_op(MZ.col(j).data(), W.col(j).data());
+      s[j] = 1.0 / std::sqrt(W.col(j).dot(sys.M * W.col(j)));
+      W.col(j) *= s[j];
+    }
+    Eigen::MatrixXd A = W.transpose() * MZ * s.asDiagonal();  // W' (K - sigma M) W
+    A = 0.5 * (A + A.transpose()).eval();
+    Eigen::MatrixXd B = W.transpose() * (sys.M * W);
+    B = 0.5 * (B + B.transpose()).eval();
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(A, B);
+    ok = rr.info() == Eigen::Success && rr.eigenvalues().minCoeff() > 0;
+    if (ok) {
+      flex.lambda = (rr.eigenvalues().array() + sigma).matrix();
+      flex.Z = W * rr.eigenvectors();
+      ++steps;
+    }
+  }
+  return steps;
+}
+
+/// Largest componentwise backward error of the pairs, as the final check measures it (constraint
+/// forces projected out, against |K| |z| + lambda |M| |z|, and the constraint violation): only to
+/// decide whether refine_pairs runs after Lanczos.
+double pair_backward_error(const System& sys, const Flexible& flex) {
+  const ConstraintProjector P(sys.G);
+  const SpMat Ka = sys.K.cwiseAbs(), Ma = sys.M.cwiseAbs();
+  double worst = 0;
+  for (long j = 0; j < flex.lambda.size(); ++j) {
+    const Eigen::VectorXd z = flex.Z.col(j);
+    Eigen::VectorXd res = sys.K * z - flex.lambda[j] * (sys.M * z);
+    if (sys.m() > 0) res = P(res);
+    const Eigen::VectorXd za = z.cwiseAbs();
+    const double scale = (Ka * za + std::abs(flex.lambda[j]) * (Ma * za)).norm();
+    const double viol = sys.m() > 0 ? (sys.G * z).norm() / z.norm() : 0.0;
+    worst = std::max({worst, res.norm() / std::max(scale, 1e-300), viol});
+  }
+  return worst;
+}
+
 Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions& opt) {
   Modes out;
   const long n = sys.n(), m = sys.m();
@@ -164,29 +217,7 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
       try {
         ShiftInvertOp op(sys, R);
         op.set_shift(sigma);
-        const long k = flex.lambda.size();
-        int steps = 0;  // completed refinement steps
-        for (bool ok = true; steps < 2 && ok;) {
-          const Eigen::MatrixXd MZ = sys.M * flex.Z;
-          Eigen::MatrixXd W(n, k);
-          Eigen::VectorXd s(k);
-          for (long j = 0; j < k; ++j) {
-            op.perform_op(MZ.col(j).data(), W.col(j).data());
-            s[j] = 1.0 / std::sqrt(W.col(j).dot(sys.M * W.col(j)));
-            W.col(j) *= s[j];
-          }
-          Eigen::MatrixXd A = W.transpose() * MZ * s.asDiagonal();  // W' (K - sigma M) W
-          A = 0.5 * (A + A.transpose()).eval();
-          Eigen::MatrixXd B = W.transpose() * (sys.M * W);
-          B = 0.5 * (B + B.transpose()).eval();
-          Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(A, B);
-          ok = rr.info() == Eigen::Success && rr.eigenvalues().minCoeff() > 0;
-          if (ok) {
-            flex.lambda = (rr.eigenvalues().array() + sigma).matrix();
-            flex.Z = W * rr.eigenvectors();
-            ++steps;
-          }
-        }
+        const int steps = refine_pairs(op, sys, sigma, flex);
         out.factor_seconds += op.factor_seconds();
         if (steps > 0)
           how += fmt::format("; refined by {} shift-invert subspace step(s) on the full coordinates ({})", steps,
@@ -276,12 +307,21 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
       nev += (count - found) + 2;
       nev = std::min(nev, n_eff - 1);
     }
-    out.operations = op.operations();
-    out.factor_seconds += op.factor_seconds();
     if (flex.lambda.size() > kf) {
       flex.lambda.conservativeResize(kf);
       flex.Z.conservativeResize(Eigen::NoChange, kf);
     }
+    if (out.converged && kf > 0 && 3 * kf < n_eff && pair_backward_error(sys, flex) > opt.backward_error_warning) {
+      // The operator is factorized at sigma already: two more solves per pair.
+      const Flexible before = flex;
+      const int steps = refine_pairs(op, sys, sigma, flex);
+      if (steps > 0 && pair_backward_error(sys, flex) < pair_backward_error(sys, before))
+        how += fmt::format("; refined by {} shift-invert subspace step(s)", steps);
+      else
+        flex = before;
+    }
+    out.operations = op.operations();
+    out.factor_seconds += op.factor_seconds();
   }
   if (kf == 0) how = "no flexible modes requested";
 
@@ -469,9 +509,9 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
     out.max_residual = std::max(out.max_residual, res);
     out.max_backward_error = std::max(out.max_backward_error, back);
   }
-  if (out.max_backward_error > opt.backward_error_warning)
-    out.warnings.push_back(fmt::format("largest eigen backward error {:.3g} exceeds {:.1g} (largest residual {:.3g})",
-                                       out.max_backward_error, opt.backward_error_warning, out.max_residual));
+  // No warning for a backward error above backward_error_warning alone: it enters each mode's
+  // forward bound above, which is the check (in the estimate, and past the tolerance a numerical
+  // issue); above 1e-8 the solver flags the pairs outright. The level only triggers refinement.
   out.eigen_seconds = seconds_since(t_eigen) - out.factor_seconds;
   return out;
 }

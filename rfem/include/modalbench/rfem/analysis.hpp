@@ -40,7 +40,7 @@ struct ModeOptions {
   long dense_limit = 40;         ///< Auto: dense up to this many coordinates (see solve_modes)
   double tolerance = 1e-10;      ///< Lanczos relative tolerance
   bool sturm_check = true;       ///< count the eigenvalues below the last mode (sparse path)
-  double backward_error_warning = 1e-10;  ///< warn (and the solver flags) above this
+  double backward_error_warning = 1e-10;  ///< above this, pairs are refined (Lanczos) or re-solved (dense fall-back)
   unsigned seed = 20240917u;     ///< Lanczos start vector
 };
 
