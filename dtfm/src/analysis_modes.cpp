@@ -296,15 +296,36 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     return n;
   };
   refresh(scale);
-  if (const int neg = total(-delta); neg > 0)
+  // A plate's rigid-body motions that no edge reaches are exact zeros of the model, but its count
+  // places them only within the rounding of K, which can exceed kRigidThreshold (a free plate of
+  // 30 strips: three at |omega| ~ 2e-3 rad/s against 10 rad/s for the first elastic mode, some of
+  // them negative on coarser strips). The threshold then moves up by decades to where the count
+  // finds exactly those, none below minus it, and no other within a further factor of 100 (a gap
+  // of two decades to the elastic modes); otherwise it stays, and what the count finds is judged
+  // as before.
+  double rigid_below = delta;
+  if (model_.kind == SceneKind::Plate && model_.rigid_body_motions > 0 &&
+      (total(delta) != model_.rigid_body_motions || total(-delta) != 0)) {
+    for (double t = 10.0 * delta; t <= 1e-4 * scale; t *= 10.0)
+      if (total(t) == model_.rigid_body_motions && total(-t) == 0 && total(100.0 * t) == model_.rigid_body_motions) {
+        rigid_below = t;
+        break;
+      }
+  }
+  rigid_shift_ = rigid_below;
+  if (const int neg = total(-rigid_below); neg > 0)
     throw std::runtime_error(fmt::format("the prism model has {} negative eigenvalue(s) omega^2 < 0: unstable", neg));
   std::vector<int> rigid_c(lines_.size(), 0);
   int rigid = 0;
-  for (int c : cls) rigid += rigid_c[c] = count_det(*lines_[c], delta, mesh[c]).count;
+  for (int c : cls) rigid += rigid_c[c] = count_det(*lines_[c], rigid_below, mesh[c]).count;
   // The lowest eigenvalues of classes with rigid motions of their own: rigid (0) and near-rigid.
   std::vector<NearRigid> near(lines_.size());
   for (int c : cls) {
     near[c] = near_rigid(*lines_[c], rigid_c[c]);
+    if (rigid_below > delta) {  // a plate's (no rigid split of its own): its rigid modes lie below
+      near[c].lo = rigid_below;
+      near[c].below_lo = near[c].rigid = rigid_c[c];
+    }
     if (!near[c].problem.empty()) {
       out.count_consistent = false;
       out.count_message += (out.count_message.empty() ? "" : "; ") + near[c].problem;

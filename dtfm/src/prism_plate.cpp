@@ -164,6 +164,26 @@ PrismModel build_plate(const Scene& s, int n, const ModelOptions& opt) {
                                     opt.kirchhoff_penalty));
   mdl.lambda_scale = D / (rho * h) * std::pow(std::numbers::pi / std::max(a, b), 4);
   mdl.translation_scale = h;
+  // Rigid-body motions w = a0 + a1 x / a + a2 y / b left free by the edges: a held translation
+  // along an edge fixes w there (two conditions), a held rotation its normal slope.
+  {
+    std::vector<Eigen::RowVector3d> rows;
+    bool spring = false;
+    auto edge = [&](const Support& sp, Eigen::RowVector3d at, Eigen::RowVector3d along, Eigen::RowVector3d normal) {
+      for (double k : {sp.translational, sp.rotational}) spring = spring || (k != 0.0 && !std::isinf(k));
+      if (std::isinf(sp.translational)) rows.insert(rows.end(), {at, along});
+      if (std::isinf(sp.rotational)) rows.push_back(normal);
+    };
+    edge(s.x0, {1, 0, 0}, {0, 0, 1}, {0, 1, 0});
+    edge(s.xL, {1, 1, 0}, {0, 0, 1}, {0, 1, 0});
+    edge(s.y0, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+    edge(s.yB, {1, 0, 1}, {0, 1, 0}, {0, 0, 1});
+    if (!spring) {
+      Eigen::MatrixXd Cm(static_cast<Eigen::Index>(rows.size()), 3);
+      for (std::size_t i = 0; i < rows.size(); ++i) Cm.row(static_cast<Eigen::Index>(i)) = rows[i];
+      mdl.rigid_body_motions = 3 - (rows.empty() ? 0 : static_cast<int>(Eigen::FullPivLU<Eigen::MatrixXd>(Cm).rank()));
+    }
+  }
   return mdl;
 }
 

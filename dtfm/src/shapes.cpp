@@ -214,7 +214,8 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   Eigen::MatrixXd V(N, p);
   for (int attempt = 0;; ++attempt) {
     const double rel = kShift * std::pow(100.0, attempt);
-    const double shift = rigid ? -kRigidThreshold * model_.lambda_scale : lambda * (1.0 + rel);
+    const double shift =
+        rigid ? -std::max(kRigidThreshold * model_.lambda_scale, 10.0 * rigid_shift_) : lambda * (1.0 + rel);
     const long unknowns_before = max_unknowns_;
     const Assembled a = assemble(c, shift, mesh);
     max_shape_unknowns_ = std::max<long>(max_shape_unknowns_, a.K.free_dofs());

@@ -131,6 +131,9 @@ class LineAnalysis {
     double h_base = 0;
     double h_im = 0, h_re = 0;  ///< the two bounds behind h_base (oscillatory, evanescent)
   };
+  /// Below this omega^2 (and above minus it) the last modes() call counted only rigid-body modes:
+  /// the mode shapes' inverse iteration for them shifts below it.
+  double rigid_shift_ = 0;
   struct Band {  ///< a range of lambda sliced on one mesh
     double lo, hi;
     Mesh mesh;

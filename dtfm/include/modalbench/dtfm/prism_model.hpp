@@ -121,6 +121,10 @@ struct PrismModel {
   std::vector<FieldClass> classes;
   double translation_scale = 1;  ///< a length: translations are divided by it in the line solves
   double lambda_scale = 1;       ///< omega^2 scale (the first mode's order of magnitude)
+  /// Plate: how many rigid-body motions (w = a + b x + c y) no edge support reaches; they are
+  /// exact zeros of the model, which its count resolves only to rounding. -1 where an edge spring
+  /// makes them near-rigid, and for beams (their classes carry their own rigid split).
+  int rigid_body_motions = -1;
   /// Beam: rigid section motions over the fields (m x 6, columns U, V, W, Theta_x, Theta_y,
   /// Theta_z; zero columns where the physics has no such motion) and the section's weights.
   Eigen::MatrixXd rigid_motions;
