@@ -145,8 +145,8 @@ BOOST_AUTO_TEST_CASE(complete_spectrum_frf_equals_per_frequency_solves) {
     Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + file);
     sc.material.loss_factor = 0.01;
     const RfemSolver s;
-    // Small enough (<= 600 free coordinates) for the complete decomposition to be chosen.
-    const Discretization mesh = sc.is_beam() ? Discretization{{128}} : Discretization{{16, 10}};
+    // Small enough (<= 80 free coordinates) for the complete decomposition to be chosen.
+    const Discretization mesh = sc.is_beam() ? Discretization{{32}} : Discretization{{6, 4}};
     const Result r = s.solve(sc, mesh, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     BOOST_TEST(r.summary.method.find("complete spectral decomposition") != std::string::npos);
