@@ -85,6 +85,7 @@ struct StaticSolution {
   std::string message;   ///< reason when !ok (mechanism: motions and free coordinates named)
   Eigen::VectorXd z;
   double residual = 0;   ///< ||K z - f|| / ||f|| (constraint forces projected out)
+  int near_mechanism = 0;  ///< rigid motions held only by soft springs, split off in the solve
   double factor_seconds = 0, solve_seconds = 0;
 };
 StaticSolution solve_static(const Model& model, const System& sys, const Eigen::VectorXd& f);
