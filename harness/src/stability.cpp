@@ -56,6 +56,25 @@ std::vector<double> pick(const std::vector<double>& all, bool quick) {
   return {all.front(), all[all.size() / 2], all.back()};
 }
 
+/// A steel Kirchhoff plate (E = 200 GPa, nu = 0.3, rho = 8000) of geometry {a, b, h} with its
+/// edge supports {x0, xL, y0, yB}, modes only.
+Scene base_plate(const std::string& name, const Geometry& g, const std::array<Support, 4>& edges) {
+  Scene pl = base_beam(name, g.length, g.height, Theory::Kirchhoff);
+  pl.kind = SceneKind::Plate;
+  pl.geometry = g;
+  pl.material.E = 2e11;
+  pl.material.nu = 0.3;
+  pl.material.G = pl.material.E / 2.6;
+  pl.material.rho = 8000;
+  pl.x0 = edges[0];
+  pl.xL = edges[1];
+  pl.y0 = edges[2];
+  pl.yB = edges[3];
+  pl.loads.clear();
+  pl.request.probes.clear();
+  return pl;
+}
+
 }  // namespace
 
 std::vector<StabilityCase> stability_cases(bool quick) {
@@ -102,33 +121,17 @@ std::vector<StabilityCase> stability_cases(bool quick) {
     sc.x0 = sc.xL = Support::named("pinned");
     sc.request.modes = quick ? 30 : 1000;
     cases.push_back({"high-modes", fmt::format("L/h = 1000, pinned-pinned, {} modes", sc.request.modes), sc, false});
-    Scene pl = base_beam("high-modes-plate", 1.0, 0.03, Theory::Kirchhoff);
-    pl.kind = SceneKind::Plate;
-    pl.geometry = {1.0, 0.6, 0.03};
-    pl.material.E = 2e11;
-    pl.material.nu = 0.3;
-    pl.material.G = pl.material.E / 2.6;
-    pl.material.rho = 8000;
-    pl.x0 = pl.xL = pl.y0 = pl.yB = Support::named("pinned");
-    pl.loads.clear();
-    pl.request.probes.clear();
+    const Support pinned = Support::named("pinned");
+    Scene pl = base_plate("high-modes-plate", {1.0, 0.6, 0.03}, {pinned, pinned, pinned, pinned});
     pl.request.modes = quick ? 30 : 100;
     cases.push_back({"high-modes", fmt::format("paper plate, {} modes", pl.request.modes), pl, false});
   }
   // Plates without a support on some edges: free (three rigid-body modes) and cantilever
   // (NAFEMS FV12 and FV16 geometry, 10 x 10 x 0.05 m steel).
   for (bool free : {true, false}) {
-    Scene pl = base_beam(free ? "free-plate" : "cantilever-plate", 10.0, 0.05, Theory::Kirchhoff);
-    pl.kind = SceneKind::Plate;
-    pl.geometry = {10.0, 10.0, 0.05};
-    pl.material.E = 2e11;
-    pl.material.nu = 0.3;
-    pl.material.G = pl.material.E / 2.6;
-    pl.material.rho = 8000;
-    pl.x0 = free ? Support::named("free") : Support::named("clamped");
-    pl.xL = pl.y0 = pl.yB = Support::named("free");
-    pl.loads.clear();
-    pl.request.probes.clear();
+    const Support none = Support::named("free");
+    Scene pl = base_plate(free ? "free-plate" : "cantilever-plate", {10.0, 10.0, 0.05},
+                          {free ? none : Support::named("clamped"), none, none, none});
     pl.request.modes = free ? 9 : 6;
     cases.push_back({"plates", free ? "free plate 10 x 10 x 0.05 m, 9 modes (3 rigid)"
                                     : "cantilever plate 10 x 10 x 0.05 m, 6 modes",

@@ -55,6 +55,27 @@ Scene eb_beam(double L, double b, double h, double E, double rho, Support x0, Su
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
+/// NAFEMS FV12 / FV16 geometry: a steel Kirchhoff plate 10 x 10 x 0.05 m with its edge supports.
+Scene nafems_plate(const std::string& name, Support x0, Support xL, Support y0, Support yB, int modes) {
+  Scene s;
+  s.name = name;
+  s.kind = SceneKind::Plate;
+  s.theory = Theory::Kirchhoff;
+  s.geometry = {10.0, 10.0, 0.05};
+  s.material.E = 200e9;
+  s.material.nu = 0.3;
+  s.material.G = 200e9 / 2.6;
+  s.material.rho = 8000;
+  s.material.kappa = 5.0 / 6.0;
+  s.x0 = x0;
+  s.xL = xL;
+  s.y0 = y0;
+  s.yB = yB;
+  s.request.modes = modes;
+  validate(s);
+  return s;
+}
+
 }  // namespace
 
 // Issue 13 (3) / issue 18 (13): a beam on springs of 1e-6 N/m and 1e-6 N m/rad has heave and
@@ -345,19 +366,8 @@ BOOST_AUTO_TEST_CASE(deep_euler_bernoulli_beam_on_fine_rfem_meshes) {
 // negative ("unstable"). They are exact zeros (no edge reaches them); the elastic modes are
 // checked against rfem, a second method, within the two results' own estimates.
 BOOST_AUTO_TEST_CASE(dtfm_free_plate_has_three_rigid_modes_and_its_elastic_ones) {
-  Scene s;
-  s.name = "free-plate";
-  s.kind = SceneKind::Plate;
-  s.theory = Theory::Kirchhoff;
-  s.geometry = {10.0, 10.0, 0.05};
-  s.material.E = 2e11;
-  s.material.nu = 0.3;
-  s.material.G = 2e11 / 2.6;
-  s.material.rho = 8000;
-  s.material.kappa = 5.0 / 6.0;
-  s.x0 = s.xL = s.y0 = s.yB = Support::named("free");
-  s.request.modes = 9;
-  validate(s);
+  const Support free = Support::named("free");
+  const Scene s = nafems_plate("free-plate", free, free, free, free, 9);
   const Result ref = registry().get("rfem").solve(s, Discretization::parse("100x100"), Options{});
   BOOST_REQUIRE(ref.frequencies_rad_s.size() == 9u);
   const double ref_est = ref.summary.error_estimate.frequencies;
@@ -411,20 +421,8 @@ BOOST_AUTO_TEST_CASE(rfem_statics_on_springs_of_1e_minus_12) {
 // pieces were short enough that the doublings lost mode 1 to 1e-4. Reference: rfem, a second
 // method, within the two results' own estimates.
 BOOST_AUTO_TEST_CASE(dtfm_cantilever_plate_at_64_strips) {
-  Scene s;
-  s.name = "cantilever-plate";
-  s.kind = SceneKind::Plate;
-  s.theory = Theory::Kirchhoff;
-  s.geometry = {10.0, 10.0, 0.05};
-  s.material.E = 2e11;
-  s.material.nu = 0.3;
-  s.material.G = 2e11 / 2.6;
-  s.material.rho = 8000;
-  s.material.kappa = 5.0 / 6.0;
-  s.x0 = Support::named("clamped");
-  s.xL = s.y0 = s.yB = Support::named("free");
-  s.request.modes = 3;
-  validate(s);
+  const Support free = Support::named("free");
+  const Scene s = nafems_plate("cantilever-plate", Support::named("clamped"), free, free, free, 3);
   const Result ref = registry().get("rfem").solve(s, Discretization::parse("128x128"), Options{});
   BOOST_REQUIRE(ref.frequencies_rad_s.size() == 3u);
   const Result r = registry().get("dtfm").solve(s, Discretization::parse("64"), Options{});
@@ -770,20 +768,9 @@ BOOST_AUTO_TEST_CASE(elongated_plates_converge_or_say_they_did_not) {
 // the 30-strip result a success at tolerance 0.5 with its 9th mode 55 % off. Reference: NAFEMS
 // FV12's thin-plate values (1.622, 2.360, 2.922, 4.233, 4.233, 7.416 Hz; about 1 % themselves).
 BOOST_AUTO_TEST_CASE(pre_asymptotic_meshes_widen_the_estimate) {
-  Scene s;
-  s.name = "fv12-soft-penalty";
-  s.kind = SceneKind::Plate;
-  s.theory = Theory::Kirchhoff;
-  s.geometry = {10.0, 10.0, 0.05};
-  s.material.E = 200e9;
-  s.material.nu = 0.3;
-  s.material.G = 200e9 / 2.6;
-  s.material.rho = 8000;
-  s.material.kappa = 5.0 / 6.0;
-  s.x0 = s.xL = s.y0 = s.yB = Support::named("free");
-  s.request.modes = 9;
+  const Support free = Support::named("free");
+  Scene s = nafems_plate("fv12-soft-penalty", free, free, free, free, 9);
   s.request.tolerance = 0.5;
-  validate(s);
   Options o;
   o.backend = {{"kirchhoff_penalty", "0.001"}};
   const Result r = registry().get("dtfm").solve(s, Discretization::parse("30"), o);
