@@ -459,15 +459,20 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     out.family.push_back(share >= ctl_.family_threshold ? line.family : ModeFamily::Unknown);
   }
   // Reproducibility: each mode's class is counted just below and above it (lambda (1 -+ tau))
-  // on a second discretization (segments split in two, base pieces half as long: other J0,
-  // other pivots, other rounding). A mode whose count does not come out as expected is below
-  // the model's rounding floor (stiff layers or very slender spans against soft supports).
+  // on a second discretization: each segment cut at its golden section, base pieces within the
+  // same bounds (other J0, other pivots, other rounding, the same accuracy). A mode whose count
+  // does not come out as expected is below the model's rounding floor (stiff layers or very
+  // slender spans against soft supports). Base pieces longer or shorter than the bounds would
+  // test a worse discretization instead: twice the evanescent bound loses digits in exp(A h), half
+  // of it one more doubling (a free plate of 180 strips and a cantilever of 64 were flagged so).
   constexpr double tau = 1e-4;
   auto alt_of = [&](const Mesh& m) {
-    Mesh a = refined(m);
-    // Longer base pieces where the evanescent bound sets them (fewer doublings), else shorter.
-    const double longer = std::min({model_.length, m.h_im, 2.0 * m.h_re});
-    a.h_base = longer > 1.5 * m.h_base ? longer : 0.5 * m.h_base;
+    Mesh a = m;
+    a.x = {m.x.front()};
+    for (std::size_t i = 0; i + 1 < m.x.size(); ++i) {
+      a.x.push_back(m.x[i] + 0.5 * (std::sqrt(5.0) - 1.0) * (m.x[i + 1] - m.x[i]));
+      a.x.push_back(m.x[i + 1]);
+    }
     return a;
   };
   std::deque<std::pair<const Mesh*, Mesh>> alt;  // per band's mesh
