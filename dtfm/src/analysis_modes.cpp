@@ -244,6 +244,10 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   return out;
 }
 
+/// Where a line is cut into two incommensurate segments (a second discretization): the golden
+/// section, 0.618... of the way along.
+const double kGoldenCut = 0.5 * (std::sqrt(5.0) - 1.0);
+
 /// A beam's line is one segment: its poles (the segment's clamped-clamped frequencies) are the
 /// zeros of a free-free Euler-Bernoulli span exactly, and nearly those of a span on very soft or
 /// very stiff springs. At such a root K(lambda) is rounded relative to the pole's size, and the
@@ -261,7 +265,7 @@ void LineAnalysis::repolish_near_poles(ClassLine& c, const Mesh& mesh, double la
   for (std::size_t j = 0; j < vals.size(); ++j) {
     const double lo = vals[j] * (1 - kPoleGap), hi = vals[j] * (1 + kPoleGap);
     if (!(lo > 0) || assemble(c, lo, mesh).info.clamped_below == assemble(c, hi, mesh).info.clamped_below) continue;
-    if (cut.x.empty()) cut = mesh_for(c, lambda_max, {0.5 * (std::sqrt(5.0) - 1.0) * model_.length});
+    if (cut.x.empty()) cut = mesh_for(c, lambda_max, {kGoldenCut * model_.length});
     const auto again = slice_interval_polished([&](double lam) { return count_det(c, lam, cut); }, lo, hi,
                                                ctl_.rel_tol, 0.0, st);
     std::size_t here = 0;
@@ -470,7 +474,7 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     Mesh a = m;
     a.x = {m.x.front()};
     for (std::size_t i = 0; i + 1 < m.x.size(); ++i) {
-      a.x.push_back(m.x[i] + 0.5 * (std::sqrt(5.0) - 1.0) * (m.x[i + 1] - m.x[i]));
+      a.x.push_back(m.x[i] + kGoldenCut * (m.x[i + 1] - m.x[i]));
       a.x.push_back(m.x[i + 1]);
     }
     return a;
