@@ -312,11 +312,12 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
       flex.lambda.conservativeResize(kf);
       flex.Z.conservativeResize(Eigen::NoChange, kf);
     }
-    if (out.converged && kf > 0 && 3 * kf < n_eff && pair_backward_error(sys, flex) > opt.backward_error_warning) {
+    if (const double back = out.converged && kf > 0 && 3 * kf < n_eff ? pair_backward_error(sys, flex) : 0.0;
+        back > opt.backward_error_warning) {
       // The operator is factorized at sigma already: two more solves per pair.
       const Flexible before = flex;
       const int steps = refine_pairs(op, sys, sigma, flex);
-      if (steps > 0 && pair_backward_error(sys, flex) < pair_backward_error(sys, before))
+      if (steps > 0 && pair_backward_error(sys, flex) < back)
         how += fmt::format("; refined by {} shift-invert subspace step(s)", steps);
       else
         flex = before;
