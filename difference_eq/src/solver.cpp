@@ -236,6 +236,21 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
       }
       ++unconfirmed;
     }
+    // Nothing missed below the first mode. The double count can miss near-rigid modes altogether
+    // (springs of 4e-17 of EI / L^3: a heave at 1.3e5 rad/s missed, 9.1e6 reported as mode 1 and
+    // confirmed, success); the binary128 count must find exactly the rigid ones below it.
+    long missed = 0;
+    if (sp.omega_rad_s.size() > static_cast<std::size_t>(sp.rigid) && beam.R <= kQuadCountMaxR) {
+      const double l0 = sp.omega_rad_s[static_cast<std::size_t>(sp.rigid)] * sp.omega_rad_s[static_cast<std::size_t>(sp.rigid)];
+      missed = assembled::count_below<__float128>(beam, mass, static_cast<__float128>(l0) * (1 - static_cast<__float128>(1e-8))) -
+               sp.rigid;
+      if (missed != 0)
+        sum.raise(Status::NumericalIssue,
+                  fmt::format("the binary128 count finds {} frequency(ies) below the first one reported ({:.6g} rad/s) "
+                              "besides the {} rigid-body mode(s): near-rigid modes on soft springs that the "
+                              "closed-form count in double does not resolve",
+                              missed, sp.omega_rad_s[static_cast<std::size_t>(sp.rigid)], sp.rigid));
+    }
     sum.set_diagnostic("root_bracket_relative", sp.max_bracket);
     if (quad > 0) sum.set_diagnostic("count_confirmations_binary128", static_cast<double>(quad));
     if (unconfirmed > 0)

@@ -55,6 +55,8 @@ Scene eb_beam(double L, double b, double h, double E, double rho, Support x0, Su
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
+Scene scene_file(const std::string& file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + file); }
+
 /// NAFEMS FV12 / FV16 geometry: a steel Kirchhoff plate 10 x 10 x 0.05 m with its edge supports.
 Scene nafems_plate(const std::string& name, Support x0, Support xL, Support y0, Support yB, int modes) {
   Scene s;
@@ -433,6 +435,39 @@ BOOST_AUTO_TEST_CASE(dtfm_cantilever_plate_at_64_strips) {
   for (int i = 0; i < 3; ++i) BOOST_TEST(rel(r.frequencies_rad_s[i], ref.frequencies_rad_s[i]) <= est, "mode " << i + 1);
 }
 
+// Fuzz finding (seed 7, case 931): the Lasecka beam 4 um long (its springs then 4e-17 of EI / L^3).
+// difference_eq's double count missed the heave on the springs altogether and reported 9.1e6 rad/s
+// as mode 1, confirmed by that count, with success. Its binary128 count now finds the missed
+// value and the result is flagged. Reference for exact: the rigid body on its springs (heave and
+// rocking).
+BOOST_AUTO_TEST_CASE(missed_near_rigid_modes_are_flagged) {
+  Scene s = scene_file("lasecka_elastic_beam.toml");
+  const double L = 4e-6;
+  s.geometry.length = L;
+  for (auto& p : s.loads) p.x *= L / 4.0;
+  for (auto& p : s.request.probes) p[0] *= L / 4.0;
+  s.request.modes = 2;
+  validate(s);
+  const double m = s.material.rho * s.geometry.width * s.geometry.height * L, J = m * L * L / 12;
+  const double k0 = s.x0.translational, kL = s.xL.translational, chi = s.x0.rotational;
+  // Centre heave w and rotation t: K = [[k0 + kL, (kL - k0) L / 2], [., (k0 + kL) L^2 / 4 + chi]].
+  const double a = (k0 + kL) / m, b = (kL - k0) * L / 2 / std::sqrt(m * J), c = ((k0 + kL) * L * L / 4 + chi) / J;
+  // The larger root directly, the smaller from the product (mean - dev would cancel: c / a ~ 1e12).
+  const double l2 = 0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+  const double w1 = std::sqrt((a * c - b * b) / l2), w2 = std::sqrt(l2);
+  const Result e = run("exact", s);
+  BOOST_TEST(to_string(e.summary.status) == "success", e.summary.message);
+  BOOST_REQUIRE(e.frequencies_rad_s.size() == 2u);
+  // The heave lies 1e-19 (lambda / lambda_E) below the first elastic mode's scale: the rigid body
+  // is exact for it. The rocking on the stiff rotational spring is 1.2e-7 of lambda_E: there the
+  // rigid shapes give only a Rayleigh upper bound.
+  BOOST_TEST(rel(e.frequencies_rad_s[0], w1) < 1e-9);
+  BOOST_TEST(e.frequencies_rad_s[1] <= w2 * (1 + 1e-12));
+  const Result d = run("difference_eq", s, "2048");
+  BOOST_TEST(to_string(d.summary.status) == "numerical-issue", d.summary.message);
+  BOOST_TEST(d.summary.message.find("binary128 count finds") != std::string::npos, d.summary.message);
+}
+
 // Issue 13 (2): near-mechanism statics. L = 2 m, 0.05 x 0.1 m, E = 200 GPa; x0 springs of
 // K = k L^3 / EI = 1e-6 and Kr = chi L / EI = 1e-6, xL translational K = 1e12, rotation free;
 // 1000 N at x = 0, 0.2, ..., 2. The difference_eq closed form is the reference.
@@ -533,10 +568,6 @@ BOOST_AUTO_TEST_CASE(dtfm_multi_prism_section_keeps_the_axial_hold) {
     }
   }
 }
-
-namespace {
-Scene scene_file(const std::string& file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + file); }
-}  // namespace
 
 // Issue 18 (5): a plate guided on all four edges is free to translate in z; a static load on it
 // has no solution. dtfm returned w = 291250.9 m with status success; it must refuse it as rfem does.
