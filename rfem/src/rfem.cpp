@@ -343,6 +343,8 @@ void RfemSolver::solve_statics(const Scene& s, const Model& model, const System&
               fmt::format("{}: supports: {}", mesh_source(s), st.message));
     return;
   }
+  // Rigid motions held only by soft springs, split off in the solve (provenance of the deflections).
+  if (st.near_mechanism > 0) sum.set_diagnostic("near_mechanism_rigid_motions", st.near_mechanism);
   for (const auto& p : s.request.probes) {
     const Eigen::Vector3d P = point_of(s, p);
     Deflection d;
