@@ -135,6 +135,22 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
     std::cout << fmt::format("  probe ({:g}, {:g}) m: w = {:.8e} m, theta_y = {:.8e} rad\n", d.position[0],
                              d.position[1], d.w, d.theta_y);
   if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
+  const auto& ee = r.summary.error_estimate;
+  if (std::isfinite(ee.frequencies) || std::isfinite(ee.deflections))
+    std::cout << fmt::format("  estimated discretization error: frequencies {:.2g}, deflections {:.2g} (relative)\n",
+                             ee.frequencies, ee.deflections);
+  const auto& xp = r.extrapolated;
+  if (!xp.empty()) {
+    std::cout << fmt::format("  Richardson extrapolation of meshes {} (order {:g} removed):\n", xp.meshes, xp.order);
+    for (std::size_t i = 0; i < xp.frequencies_rad_s.size(); ++i)
+      std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  estimated error {:.2g}\n", i + 1, xp.frequencies_rad_s[i],
+                               xp.frequency_errors[i]);
+    for (const auto& d : xp.deflections)
+      std::cout << fmt::format("  probe ({:g}, {:g}) m: w = {:.8e} m\n", d.position[0], d.position[1], d.w);
+    if (!xp.deflections.empty())
+      std::cout << fmt::format("  deflections: estimated error {:.2g} of the largest\n", xp.deflection_error);
+  }
+  if (!xp.note.empty()) std::cout << "  extrapolation: " << xp.note << "\n";
   for (const auto& n : scene.notes) std::cout << "  note: " << n << "\n";
   for (const auto& w : r.summary.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << fmt::format("  time {:.4g} s\n", r.summary.total_time_s);

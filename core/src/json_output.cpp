@@ -116,6 +116,29 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
                          {"order", num(ee.order)},
                          {"safety_factor", num(ee.safety_factor)},
                          {"note", ee.note}};
+  const auto& xp = r.extrapolated;
+  if (!xp.empty() || !xp.note.empty()) {
+    json xf = json::array(), xe = json::array(), xd = json::array();
+    for (double v : xp.frequencies_rad_s) xf.push_back(num(v));
+    for (double v : xp.frequency_errors) xe.push_back(num(v));
+    json xo = json::array();
+    for (double v : xp.observed_orders) xo.push_back(num(v));
+    for (const auto& d : xp.deflections)
+      xd.push_back({{"position", scene.is_beam() ? json::array({d.position[0]}) : json::array({d.position[0], d.position[1]})},
+                    {"u", num(d.u)}, {"v", num(d.v)}, {"w", num(d.w)},
+                    {"theta_x", num(d.theta_x)}, {"theta_y", num(d.theta_y)}, {"theta_z", num(d.theta_z)}});
+    j["extrapolated"] = {{"frequencies_rad_s", xf},
+                         {"frequency_errors", xe},
+                         {"observed_orders", xo},
+                         {"frequency_error", num(xp.frequency_error)},
+                         {"deflections", xd},
+                         {"deflection_error", num(xp.deflection_error)},
+                         {"meshes", xp.meshes},
+                         {"order", num(xp.order)},
+                         {"next_order", num(xp.next_order)},
+                         {"deflection_next_order", num(xp.deflection_next_order)},
+                         {"note", xp.note}};
+  }
   json diag = json::object();
   for (const auto& [name, v] : r.summary.diagnostics) diag[name] = num(v);
   j["diagnostics"] = diag;

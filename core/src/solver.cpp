@@ -1,5 +1,7 @@
 #include "modalbench/solver.hpp"
 
+#include "modalbench/extrapolation.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -472,7 +474,11 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     light.request.frf.reset();
     light.request.shapes.reset();
     ResourceEstimate est = estimate(scene, mesh, opt);
-    for (const std::optional<CoarserMesh>* c : {&std::as_const(coarse), &coarser2})
+    // A fourth, the next coarser again, where the family extrapolates (CoarserMesh::next_order):
+    // it checks the extrapolated values' own order (extrapolation.hpp), at a fraction of the cost.
+    const std::optional<CoarserMesh> coarser3 =
+        coarser2 && std::isfinite(coarse->next_order) ? coarser_mesh(scene, coarser2->mesh, opt) : std::nullopt;
+    for (const std::optional<CoarserMesh>* c : {&std::as_const(coarse), &coarser2, &coarser3})
       if (*c) {
         const ResourceEstimate ce = estimate(light, (*c)->mesh, opt);
         est.bytes = std::max(est.bytes, ce.bytes);
@@ -509,6 +515,21 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     std::vector<std::string> estimate_warnings;
     std::string refined_note;
     double estimate_time = 0;
+    // The two coarser solves of the estimate, kept for the Richardson extrapolation (extrapolation.hpp).
+    Result kept_H, kept_2H, kept_4H;
+    double kept_ratio = kNotMeasured, kept_ratio2 = kNotMeasured, kept_ratio3 = kNotMeasured;
+    bool kept_three = false, kept_four = false;
+    // The fourth mesh's solve: optional, so a failure only leaves the extrapolation with three.
+    auto run_fourth = [&](const Discretization& m) {
+      try {
+        Result x = run(light, m);
+        return std::optional<Result>(std::move(x));
+      } catch (const std::bad_alloc&) {
+        throw;
+      } catch (const std::exception&) {
+        return std::optional<Result>();
+      }
+    };
     if (coarse && opt.refine_to_tolerance) try {
       // The default mesh: refine until the estimate meets the tolerance (light solves only; the
       // whole request is then solved once on the mesh kept).
@@ -516,8 +537,14 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
       auto since_start = [&] { return std::chrono::duration<double>(clock::now() - t0).count(); };
       // Three solves in a row: r2 (2H), prev (H), cur (h, judged).
       Result r2;
+      std::optional<Result> r3;  // 4H, for the extrapolation's check
+      double ratio3 = kNotMeasured;
       std::optional<MeshSolve> third;
       if (coarser2) {
+        if (coarser3) {
+          r3 = run_fourth(coarser3->mesh);
+          ratio3 = coarser3->ratio;
+        }
         r2 = run(light, coarser2->mesh);
         third = MeshSolve{coarser2->mesh.spec(), coarser2->ratio, &r2};
       }
@@ -562,6 +589,8 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
                                                   trial.summary.message));
           break;
         }
+        r3 = third ? std::optional<Result>(std::move(r2)) : std::nullopt;
+        ratio3 = third ? third->ratio : kNotMeasured;
         r2 = std::move(prev);
         third = MeshSolve{prev_spec, ratio_prev, &r2};
         prev = std::move(cur);
@@ -572,6 +601,18 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
         last_time = cur.summary.total_time_s;
         verdict = judge_discretization(scene, coarse->order, cur, MeshSolve{prev_spec, ratio, &prev}, third);
         final_mesh = *next;
+      }
+      if (third) {
+        kept_three = true;
+        kept_ratio = ratio_prev;
+        kept_ratio2 = third->ratio;
+        kept_H = std::move(prev);
+        kept_2H = std::move(r2);
+        if (r3) {
+          kept_four = true;
+          kept_ratio3 = ratio3;
+          kept_4H = std::move(*r3);
+        }
       }
       if (cur.summary.status != Status::Success && cur.summary.status != Status::NotConverged)
         estimate_warnings.push_back(fmt::format("a solve on mesh {} of the refinement was {}: {}", final_mesh.spec(),
@@ -600,7 +641,7 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     if (coarse && !verdict && severity(sum.status) < severity(Status::ResourceLimit)) {
       const auto tc = clock::now();
       try {
-        const Result cr = run(light, coarse->mesh);
+        Result cr = run(light, coarse->mesh);
         Result cr2;
         std::optional<MeshSolve> third;
         if (coarser2) {
@@ -609,10 +650,23 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
         }
         verdict = judge_discretization(scene, coarse->order, result, MeshSolve{coarse->mesh.spec(), coarse->ratio, &cr},
                                        third, check_is_finer);
-        for (const Result* c : {&cr, &std::as_const(cr2)})
+        for (const Result* c : {&std::as_const(cr), &std::as_const(cr2)})
           if (c->summary.status != Status::Success && !(c == &cr2 && !coarser2))
             estimate_warnings.push_back(fmt::format("the coarser mesh {} of the error estimate was {}: {}",
                                                     c->summary.mesh, to_string(c->summary.status), c->summary.message));
+        if (third) {
+          kept_three = true;
+          kept_ratio = coarse->ratio;
+          kept_ratio2 = coarser2->ratio;
+          kept_H = std::move(cr);
+          kept_2H = std::move(cr2);
+          if (coarser3)
+            if (std::optional<Result> cr3 = run_fourth(coarser3->mesh)) {
+              kept_four = true;
+              kept_ratio3 = coarser3->ratio;
+              kept_4H = std::move(*cr3);
+            }
+        }
       } catch (const std::bad_alloc&) {
         throw;
       } catch (const std::exception& e) {
@@ -637,6 +691,13 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
         sum.error_estimate.tolerance = scene.request.tolerance;
         sum.error_estimate.note = "no discretization error to estimate (exact segments): the solve's own bound";
       }
+    }
+    if (kept_three && coarse) {
+      const ExtrapolationMesh fourth{&kept_4H, kept_ratio3};
+      result.extrapolated = richardson_extrapolate(result, {&kept_H, kept_ratio}, {&kept_2H, kept_ratio2}, coarse->order,
+                                                   coarse->next_order, kNotMeasured,
+                                                   sum.diagnostic("frequency_solve_error_bound"),
+                                                   kept_four ? &fourth : nullptr);
     }
     for (auto& w : estimate_warnings) sum.warnings.push_back(std::move(w));
     sum.timings_s.error_estimate = estimate_time;

@@ -104,7 +104,8 @@ std::optional<CoarserMesh> DifferenceEqSolver::coarser_mesh(const Scene& s, cons
   const int half = mesh.counts[0] / 2;
   if (base == 0 || half % base) return std::nullopt;  // loads and probes would leave the nodes
   // Hermite cubics: eigenvalues converge at h^4 with the consistent mass, h^2 with the lumped one.
-  return CoarserMesh{{{half}}, 2.0, options.mass == MassModel::Consistent ? 4.0 : 2.0};
+  // The expansions are even in h: h^4 then h^6 (consistent), h^2 then h^4 (lumped).
+  return options.mass == MassModel::Consistent ? CoarserMesh{{{half}}, 2.0, 4.0, 6.0} : CoarserMesh{{{half}}, 2.0, 2.0, 4.0};
 }
 
 std::optional<Discretization> DifferenceEqSolver::finer_mesh(const Scene& s, const Discretization& mesh,

@@ -33,7 +33,9 @@ std::optional<CoarserMesh> DtfmSolver::coarser_mesh(const Scene& scene, const Di
   if (scene.is_plate()) {
     if (mesh.counts.size() != 1 || mesh.counts[0] < 4) return std::nullopt;
     const int n = mesh.counts[0] / 2;
-    return CoarserMesh{{{n}}, static_cast<double>(mesh.counts[0]) / n, 2.0};
+    // Strips: central differences across the width, even in h (tests/dtfm: the extrapolated
+    // frequencies' observed order).
+    return CoarserMesh{{{n}}, static_cast<double>(mesh.counts[0]) / n, 2.0, 4.0};
   }
   // A one-prism beam is the exact Timoshenko beam of its section: no discretization error.
   if (mesh.counts.empty() || *std::max_element(mesh.counts.begin(), mesh.counts.end()) < 2) return std::nullopt;

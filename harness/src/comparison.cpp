@@ -1,5 +1,7 @@
 #include "modalbench/harness/comparison.hpp"
 
+#include "modalbench/extrapolation.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -85,6 +87,53 @@ RunRecord timed_run(const Solver& s, const Scene& scene, const Discretization& m
   }
   rec.spent_s = now() - start;
   return rec;
+}
+
+/// Richardson-extrapolated runs of one back-end's ladder (extrapolation.hpp), as a peer of its own:
+/// "<back-end>+richardson", one per rung whose two predecessors are uniform coarsenings of it,
+/// timed as the three solves together (what a user pays for the extrapolated values). Made only
+/// where the runs tend to the scene's theory (their error is then measured against the exact
+/// solution, not against a limit of their own) and the back-end states the next order of its
+/// expansion for the family.
+std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, const std::vector<RunRecord>& runs) {
+  std::vector<RunRecord> out;
+  for (std::size_t k = 2; k < runs.size(); ++k) {
+    const RunRecord &f = runs[k], &c = runs[k - 1], &cc = runs[k - 2];
+    if (f.failed() || c.failed() || cc.failed() || !f.result.summary.converges_to_scene_theory) continue;
+    Options opt;
+    const std::optional<CoarserMesh> h = s.coarser_mesh(scene, f.mesh, opt);
+    const std::optional<CoarserMesh> hh = s.coarser_mesh(scene, c.mesh, opt);
+    if (!h || !hh || h->mesh.counts != c.mesh.counts || hh->mesh.counts != cc.mesh.counts) continue;
+    const Extrapolation x = richardson_extrapolate(f.result, {&c.result, h->ratio}, {&cc.result, hh->ratio}, h->order,
+                                                   h->next_order, kNaN, f.result.summary.diagnostic("frequency_solve_error_bound"));
+    if (x.frequencies_rad_s.empty() && x.deflections.empty()) continue;
+    RunRecord rec = f;
+    rec.backend = s.name() + "+richardson";
+    rec.result.extrapolated = x;
+    if (!x.frequencies_rad_s.empty()) rec.result.frequencies_rad_s = x.frequencies_rad_s;
+    if (!x.deflections.empty()) rec.result.deflections = x.deflections;
+    // No FRF is extrapolated: the record carries none, so its FRF is neither timed nor compared.
+    rec.result.frf.clear();
+    rec.result.summary.method = "Richardson extrapolation of meshes " + x.meshes + " (" + x.note + ")";
+    rec.time_s = QuantityTimes{};
+    rec.median_s = 0;
+    for (Quantity q : {Quantity::Frequencies, Quantity::Deflections}) {
+      const bool made = q == Quantity::Frequencies ? !x.frequencies_rad_s.empty() : !x.deflections.empty();
+      if (!made) continue;
+      const double t = f.time_s.of(q) + c.time_s.of(q) + cc.time_s.of(q);
+      (q == Quantity::Frequencies ? rec.time_s.modes : rec.time_s.statics) = t;
+      if (std::isfinite(t)) rec.median_s += t;
+    }
+    if (x.frequencies_rad_s.empty()) {
+      rec.result.frequencies_rad_s.clear();
+      rec.result.mode_families.clear();
+      rec.result.mode_shapes = ModeShapes{};
+    }
+    if (x.deflections.empty()) rec.result.deflections.clear();
+    rec.spent_s = 0;
+    out.push_back(std::move(rec));
+  }
+  return out;
 }
 
 /// A Richardson reference from the finest three successful runs of one back-end.
@@ -240,6 +289,10 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
                                        rec.repeats);
         c.runs.push_back(std::move(rec));
       }
+      std::vector<RunRecord> own;
+      for (const auto& r : c.runs)
+        if (r.backend == s->name()) own.push_back(r);
+      for (auto& rec : richardson_runs(*s, scene, own)) c.runs.push_back(std::move(rec));
     }
     for (const auto& extra : opt.extra_references)
       for (auto& rec : extra(scene, opt.progress)) c.runs.push_back(std::move(rec));

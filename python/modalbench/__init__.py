@@ -108,6 +108,12 @@ class Result:
         self.timing_s = doc["timing_s"]
         self.diagnostics = doc["diagnostics"]
         self.warnings = doc["warnings"]
+        # Richardson values from the error estimate's meshes (None where not made: see as_dict).
+        x = doc.get("extrapolated") or {}
+        self.extrapolation_note = x.get("note", "")
+        self.extrapolated_frequencies_rad_s = (
+            np.array([_num(f) for f in x["frequencies_rad_s"]], dtype=float) if x.get("frequencies_rad_s") else None)
+        self.extrapolated_frequency_error = _num(x.get("frequency_error"))
 
     @property
     def ok(self):

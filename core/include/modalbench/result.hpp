@@ -113,6 +113,30 @@ struct ErrorEstimate {
   std::string note;                   ///< how it was made, or why none was
 };
 
+/// Richardson extrapolation of a meshed result from the meshes of its own error estimate
+/// (extrapolation.hpp): values of a higher order than the mesh's, each with an estimate of its
+/// error. An extra output beside the mesh's own numbers, which it never replaces; empty where not
+/// made (fewer than three meshes, a back-end that states no next order, modes that do not pair,
+/// a mesh whose solve failed its checks), and `note` says why.
+struct Extrapolation {
+  std::vector<double> frequencies_rad_s;  ///< per mode of the result (rigid-body zeros stay 0)
+  std::vector<double> frequency_errors;   ///< per mode: estimated relative error (0 for a rigid zero)
+  double frequency_error = kNotMeasured;  ///< the largest of frequency_errors
+  /// Per mode: the order the three meshes show (NaN where their differences are within rounding).
+  /// Where it is more than 20 % from `order`, or the two coarser meshes differ by more than 5 %, the
+  /// meshes are not in the asymptotic range, and that mode's estimate is no better than the mesh's
+  /// own: max(the extrapolation's, 3 |q(h) - q(H)| / (r^p - 1)).
+  std::vector<double> observed_orders;
+  std::vector<Deflection> deflections;    ///< per probe
+  double deflection_error = kNotMeasured; ///< estimated, relative to the largest translation
+  std::string meshes;                     ///< the three meshes, fine to coarse ("64, 32, 16")
+  double order = kNotMeasured;            ///< p: the order removed
+  double next_order = kNotMeasured;       ///< s: the order assumed to remain (frequencies)
+  double deflection_next_order = kNotMeasured;  ///< s for deflections
+  std::string note;
+  bool empty() const { return frequencies_rad_s.empty() && deflections.empty(); }
+};
+
 struct Summary {
   Status status = Status::Success;
   /// Every message raised, in order, joined by "; " (empty on success).
@@ -171,6 +195,7 @@ struct Result {
   std::vector<Deflection> deflections;    ///< one per requested probe
   std::vector<FrfSample> frf;
   ModeShapes mode_shapes;  ///< when the scene asks for them (request.shapes)
+  Extrapolation extrapolated;  ///< Richardson values from the error estimate's meshes (may be empty)
   Summary summary;
 
   bool ok() const { return summary.status == Status::Success; }

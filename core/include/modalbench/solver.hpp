@@ -8,6 +8,7 @@
 //   Result r = s.solve(scene, s.default_mesh(scene), Options{});
 //   if (!r.ok()) std::cerr << r.summary.message;
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -104,6 +105,9 @@ struct CoarserMesh {
   Discretization mesh;
   double ratio = 2;  ///< H / h
   double order = 2;  ///< the order at which this family's frequencies converge
+  /// The order of the next term of the frequencies' error expansion (extrapolation.hpp), where a
+  /// test has measured it for this family; NaN: results on this family are not extrapolated.
+  double next_order = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// 80 % of the memory this process may use (physical memory, RLIMIT_AS, RLIMIT_DATA), bytes.

@@ -1,0 +1,218 @@
+// Time to accuracy (issue 14): for each back-end, the cheapest run whose largest relative error
+// over the first modes (8 on the paper plate, 6 on the beam and the cantilever) against the
+// scene's reference is at most 1e-2, 1e-3, 1e-4 and 1e-5, with its mesh and peak memory. Each
+// back-end is run two ways through Solver::solve (the `modalbench solve --mesh M` path):
+//   mesh        the mesh alone (no error estimate: the time of the numbers themselves);
+//   richardson  the mesh with its error estimate (meshes h, h/2, h/4), reporting the Richardson
+//               values and their estimate (Result::extrapolated): the time is that of all three.
+// Scenes: the prism paper's plate as a Kirchhoff and as a Mindlin plate (kappa = 1; reference the
+// exact Navier and Mindlin values), its clamped-clamped Timoshenko beam (exact Timoshenko), and
+// NAFEMS FV16's cantilever 10 x 10 x 0.05 m plate (no exact solution: the reference is dtfm's
+// Richardson value on 64 strips, whose own estimate is printed; targets below ten times it are
+// not judged).
+//
+// Sample runs:
+//   build/benchmarks/accuracy/bench_time_to_accuracy          # every scene, 3 timed repeats
+//   build/benchmarks/accuracy/bench_time_to_accuracy 5 plate  # scenes whose name contains "plate"
+//
+// 1. Each (scene, back-end, way, mesh) runs in a child process: a warm-up, then the median of
+//    the repeats; its peak resident memory is the child's own.
+// 2. A back-end's ladder stops at the first mesh that reaches 1e-5, or one that takes over 8 s.
+#include <fmt/format.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "modalbench/registry.hpp"
+#include "modalbench/solver.hpp"
+
+using namespace modalbench;
+
+namespace {
+
+constexpr std::array<double, 4> kTargets{1e-2, 1e-3, 1e-4, 1e-5};
+
+struct Measured {
+  bool ok = false;
+  double error = NAN, estimate = NAN, median_s = NAN, peak_mb = NAN;
+};
+
+/// Runs `f` in a child process and returns what it wrote into shared memory.
+Measured in_child(const std::function<Measured()>& f) {
+  auto* shared = static_cast<Measured*>(mmap(nullptr, sizeof(Measured), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0));
+  new (shared) Measured{};
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    Measured m = f();
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    m.peak_mb = static_cast<double>(u.ru_maxrss) / 1024.0;
+    shared->ok = m.ok;
+    shared->error = m.error;
+    shared->estimate = m.estimate;
+    shared->median_s = m.median_s;
+    shared->peak_mb = m.peak_mb;
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  Measured out;
+  out.ok = shared->ok;
+  out.error = shared->error;
+  out.estimate = shared->estimate;
+  out.median_s = shared->median_s;
+  out.peak_mb = shared->peak_mb;
+  munmap(shared, sizeof(Measured));
+  return out;
+}
+
+double max_rel_error(const std::vector<double>& f, const std::vector<double>& ref, std::size_t modes) {
+  if (f.size() < modes || ref.size() < modes) return NAN;
+  double worst = 0;
+  for (std::size_t i = 0; i < modes; ++i) worst = std::max(worst, std::abs(f[i] / ref[i] - 1.0));
+  return worst;
+}
+
+struct Case {
+  std::string label;
+  Scene scene;
+  std::vector<double> reference;
+  double reference_uncertainty = 0;  ///< relative
+  std::string reference_source;
+  std::map<std::string, std::vector<std::string>> meshes;  ///< per back-end, coarse to fine
+};
+
+Scene frequencies_only(Scene s, int modes) {
+  s.request.modes = modes;
+  s.request.probes.clear();
+  s.request.frf.reset();
+  s.request.shapes.reset();
+  s.loads.clear();
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  const std::string only = argc > 2 ? argv[2] : "";
+  const Registry reg = make_default_registry();
+  const std::string dir = MODALBENCH_SCENES_DIR;
+
+  std::vector<Case> cases;
+  {
+    Case k;
+    k.label = "paper plate, Kirchhoff";
+    k.scene = frequencies_only(load_scene(dir + "/paper_ss_plate.toml"), 8);
+    k.meshes["rfem"] = {"20x12", "40x24", "80x48", "120x72", "160x96", "240x144"};
+    k.meshes["dtfm"] = {"8", "16", "24", "32", "48", "64"};
+    cases.push_back(k);
+    k.label = "paper plate, Mindlin (kappa = 1)";
+    k.scene.theory = Theory::Mindlin;
+    cases.push_back(k);
+  }
+  {
+    Case k;
+    k.label = "paper fixed beam, Timoshenko";
+    k.scene = frequencies_only(load_scene(dir + "/paper_fixed_beam.toml"), 6);
+    k.meshes["rfem"] = {"16", "32", "64", "128", "256", "512", "1024"};
+    k.meshes["dtfm"] = {"1x1"};
+    k.meshes["difference_eq"] = {"16", "32", "64", "128", "256"};
+    cases.push_back(k);
+  }
+  {
+    Case k;
+    k.label = "cantilever plate 10 x 10 x 0.05 m (NAFEMS FV16)";
+    k.scene = frequencies_only(load_scene(dir + "/nafems_fv16_cantilever_plate.toml"), 6);
+    k.meshes["rfem"] = {"16x16", "32x32", "64x64", "96x96", "128x128", "192x192"};
+    k.meshes["dtfm"] = {"8", "16", "24", "32", "48", "64"};
+    cases.push_back(k);
+  }
+
+  fmt::print("Time to accuracy: largest relative error of the first modes against the reference; each entry is the\n"
+             "cheapest run reaching the target: median wall time of {} repeat(s) after a warm-up (mesh, peak resident MB).\n"
+             "'mesh': the mesh alone; 'richardson': the mesh and its two coarser meshes, the extrapolated values.\n",
+             repeats);
+  for (auto& k : cases) {
+    if (!only.empty() && k.label.find(only) == std::string::npos) continue;
+    // The reference.
+    const Solver& exact = reg.get("exact");
+    if (exact.supports(k.scene).modes) {
+      const Result r = exact.solve(k.scene, {}, Options{});
+      if (r.ok()) {
+        k.reference = r.frequencies_rad_s;
+        k.reference_source = "exact";
+      }
+    }
+    if (k.reference.empty()) {
+      Options o;
+      const Result r = reg.get("dtfm").solve(k.scene, Discretization::parse("64"), o);
+      if (!r.extrapolated.frequencies_rad_s.empty()) {
+        k.reference = r.extrapolated.frequencies_rad_s;
+        k.reference_uncertainty = r.extrapolated.frequency_error;
+        k.reference_source = fmt::format("dtfm 64 strips, Richardson (estimate {:.1e}, {})", r.extrapolated.frequency_error,
+                                         to_string(r.summary.status));
+      }
+    }
+    fmt::print("\n## {} ({} modes; reference: {})\n", k.label, k.scene.request.modes,
+               k.reference_source.empty() ? "none" : k.reference_source);
+    if (k.reference.empty()) continue;
+    fmt::print("{:<14} {:<11} {:>26} {:>26} {:>26} {:>26}\n", "back-end", "way", "1e-2", "1e-3", "1e-4", "1e-5");
+    for (const auto& [backend, meshes] : k.meshes) {
+      const Solver& s = reg.get(backend);
+      for (const bool richardson : {false, true}) {
+        std::array<std::string, 4> cell;
+        cell.fill("-");
+        std::string last;
+        for (const auto& spec : meshes) {
+          const Discretization mesh = Discretization::parse(spec);
+          const Measured m = in_child([&] {
+            Measured out;
+            Options o;
+            o.estimate_error = richardson;
+            std::vector<double> times;
+            Result r;
+            for (int i = 0; i <= repeats; ++i) {
+              const auto t0 = std::chrono::steady_clock::now();
+              r = s.solve(k.scene, mesh, o);
+              if (i > 0) times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            }
+            std::sort(times.begin(), times.end());
+            out.median_s = times[times.size() / 2];
+            const auto& f = richardson ? r.extrapolated.frequencies_rad_s : r.frequencies_rad_s;
+            out.ok = severity(r.summary.status) <= severity(Status::NotConverged) && !f.empty();
+            out.error = max_rel_error(f, k.reference, static_cast<std::size_t>(k.scene.request.modes));
+            out.estimate = richardson ? r.extrapolated.frequency_error : r.summary.error_estimate.frequencies;
+            return out;
+          });
+          last = fmt::format("{} {}: error {:.2e}, {:.3g} s, {:.0f} MB{}", spec, richardson ? "richardson" : "mesh", m.error,
+                             m.median_s, m.peak_mb, m.ok ? "" : " (failed or not extrapolated)");
+          if (m.ok)
+            for (std::size_t t = 0; t < kTargets.size(); ++t)
+              if (cell[t] == "-" && m.error <= kTargets[t] && kTargets[t] >= 10 * k.reference_uncertainty)
+                cell[t] = fmt::format("{:.3g} s ({}, {:.0f} MB)", m.median_s, spec, m.peak_mb);
+          if ((m.ok && m.error <= kTargets.back()) || !(m.median_s < 8.0)) break;
+        }
+        for (std::size_t t = 0; t < kTargets.size(); ++t)
+          if (kTargets[t] < 10 * k.reference_uncertainty) cell[t] = "(reference too coarse)";
+        fmt::print("{:<14} {:<11} {:>26} {:>26} {:>26} {:>26}\n", backend, richardson ? "richardson" : "mesh", cell[0], cell[1],
+                   cell[2], cell[3]);
+        fmt::print("{:<26} finest tried: {}\n", "", last);
+      }
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,265 @@
+#include "modalbench/extrapolation.hpp"
+
+#include "modalbench/solver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace modalbench {
+
+namespace {
+
+/// Roache's factors of safety: 3 for an estimate whose order is assumed, not observed; 1.25 for the
+/// guard from the next coarser pair (as the mesh's own estimate, result.hpp).
+constexpr double kSafety = 3.0, kGuardSafety = 1.25;
+
+/// c(r) of the header: the coefficient of D h^s left in R(h) by one Richardson step of ratio r.
+double residual_coefficient(double r, double p, double s) { return (std::pow(r, p) - std::pow(r, s)) / (std::pow(r, p) - 1.0); }
+
+double observed_order(double d1, double d2, double r, double r2, double p_max);
+
+/// The error of R(h), given D = R(h) - R(H) on ratios r (H / h) and r2 (2H / H), for a remainder
+/// of order s (s <= p: no gain assumed, R's own sequence then converges at p).
+double extrapolation_error(double D, double r, double r2, double p, double s) {
+  if (s <= p * (1 + 1e-12)) return std::abs(D) / (std::pow(r, p) - 1.0);
+  const double c1 = residual_coefficient(r, p, s), c2 = residual_coefficient(r2, p, s);
+  const double denom = std::abs(c1 - c2 * std::pow(r, s));
+  return denom > 1e-3 * std::abs(c1) ? std::abs(D) * std::abs(c1) / denom : std::numeric_limits<double>::infinity();
+}
+
+/// R(h) and its error estimate for one quantity: q, qc, qcc, qccc on h, H = r h, 2H = r2 H and,
+/// where given (finite qccc), 4H = r3 2H.
+struct Extrapolated {
+  double value = kNotMeasured, error = kNotMeasured;  // error absolute
+  double remainder_order = kNotMeasured;              // the order R's sequence showed (four meshes)
+};
+
+Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r, double r2, double r3, double p, double s,
+                         double noise) {
+  Extrapolated x;
+  const double rh = q + (q - qc) / (std::pow(r, p) - 1.0);
+  const double rH = qc + (qc - qcc) / (std::pow(r2, p) - 1.0);
+  x.value = rh;
+  if (!std::isfinite(qccc)) {
+    x.error = kSafety * extrapolation_error(rh - rH, r, r2, p, s);
+    return x;
+  }
+  // A fourth mesh: R's own sequence R(h), R(H), R(2H) shows its order, and the coarser pair's
+  // estimate carried to h guards against a difference R(h) - R(H) made small by two remainder terms
+  // of opposite signs (mode 8 of the Lasecka beam, lumped, 128/64/32 elements: R 3.9e-7 off where
+  // three meshes estimated 2.9e-7).
+  const double r2H = qcc + (qcc - qccc) / (std::pow(r3, p) - 1.0);
+  const double D1 = rh - rH, D2 = rH - r2H;
+  double s_eff = s;
+  if (std::abs(D1) > noise && std::abs(D2) > noise) {
+    x.remainder_order = observed_order(D1, D2, r, r2, s);
+    if (x.remainder_order < s) s_eff = std::max(p, x.remainder_order);
+  }
+  const double e1 = extrapolation_error(D1, r, r2, p, s_eff);
+  const double e2 = extrapolation_error(D2, r2, r3, p, s_eff) / std::pow(r, s_eff);
+  x.error = std::max(kSafety * e1, kGuardSafety * e2);
+  return x;
+}
+
+/// The order p at which errors C h^p give the differences d1 = q(h) - q(H), d2 = q(H) - q(2H) on
+/// ratios r and r2: d2 / d1 = r^p (r2^p - 1) / (r^p - 1), increasing in p. NaN where the
+/// differences change sign (not monotone) or the ratio is beyond [1/4, 4 p_max].
+double observed_order(double d1, double d2, double r, double r2, double p_max) {
+  if (!(d1 != 0) || !(d2 / d1 > 0)) return kNotMeasured;
+  auto ratio_at = [&](double q) { return std::pow(r, q) * (std::pow(r2, q) - 1.0) / (std::pow(r, q) - 1.0); };
+  double lo = 0.25, hi = 4 * p_max;
+  const double target = d2 / d1;
+  if (target <= ratio_at(lo)) return lo;
+  if (target >= ratio_at(hi)) return hi;
+  for (int it = 0; it < 80; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (ratio_at(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// How far the observed order may be from the formal one for the meshes to count as asymptotic.
+constexpr double kAsymptoticOrderTolerance = 0.2;
+/// The largest relative difference between the two coarser meshes for them to count as resolving
+/// the mode: beyond it the next terms of the expansion are as large as the leading one, and three
+/// meshes can show the formal order by coincidence (mode 7 of the Lasecka beam on 16, 8 and 4
+/// elements: differences in the ratio 16.1, yet the extrapolated value 2.3e-4 off where the
+/// extrapolation's estimate said 3.9e-6; the 4-element value was 18 % off).
+constexpr double kMaxCoarseDifference = 0.05;
+
+bool usable(const Result* r) { return r && severity(r->summary.status) < severity(Status::NumericalIssue); }
+
+}  // namespace
+
+Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh& coarse,
+                                     const ExtrapolationMesh& coarser, double order, double next_order,
+                                     double deflection_next_order, double solve_bound, const ExtrapolationMesh* coarsest) {
+  Extrapolation x;
+  x.order = order;
+  x.next_order = next_order;
+  x.deflection_next_order = deflection_next_order;
+  if (!usable(&fine) || !usable(coarse.result) || !usable(coarser.result)) {
+    x.note = "not extrapolated: one of the three meshes failed its checks";
+    return x;
+  }
+  if (!(coarse.ratio > 1) || !(coarser.ratio > 1) || !(order > 0)) {
+    x.note = "not extrapolated: the meshes are not successively coarser";
+    return x;
+  }
+  // One ratio per pair: the counts of every direction scale alike (errors C_x h_x^p + C_y h_y^p
+  // cancel only then).
+  auto uniform = [](const Result& a, const Result& b, double r) {
+    try {
+      const Discretization da = Discretization::parse(a.summary.mesh), db = Discretization::parse(b.summary.mesh);
+      if (da.counts.empty() || da.counts.size() != db.counts.size()) return false;
+      for (std::size_t k = 0; k < da.counts.size(); ++k)
+        if (std::abs(static_cast<double>(da.counts[k]) / db.counts[k] - r) > 1e-12 * r) return false;
+      return true;
+    } catch (const std::exception&) {
+      return false;
+    }
+  };
+  if (!uniform(fine, *coarse.result, coarse.ratio) || !uniform(*coarse.result, *coarser.result, coarser.ratio)) {
+    x.note = fmt::format("not extrapolated: meshes {}, {}, {} are not uniform coarsenings (every count divided by the "
+                         "same ratio)",
+                         fine.summary.mesh, coarse.result->summary.mesh, coarser.result->summary.mesh);
+    return x;
+  }
+  // The fourth mesh only where it too is usable and a uniform coarsening; otherwise three.
+  const bool fourth = coarsest && usable(coarsest->result) && coarsest->ratio > 1 &&
+                      uniform(*coarser.result, *coarsest->result, coarsest->ratio);
+  x.meshes = fmt::format("{}, {}, {}{}", fine.summary.mesh, coarse.result->summary.mesh, coarser.result->summary.mesh,
+                         fourth ? ", " + coarsest->result->summary.mesh : std::string());
+  std::vector<std::string> why;
+  const double r = coarse.ratio, r2 = coarser.ratio, r3 = fourth ? coarsest->ratio : kNotMeasured, p = order;
+  // The value on the fourth mesh where it has one (NaN: three meshes).
+  auto on_fourth = [&](auto&& get) { return fourth ? get(*coarsest->result) : kNotMeasured; };
+  const double solve = std::isfinite(solve_bound) ? solve_bound : 0.0;
+  // Frequencies: every mode pairs index by index, within the same family, and a rigid-body zero is
+  // a zero on all three meshes (then it stays an exact zero).
+  const auto& f = fine.frequencies_rad_s;
+  const auto& c = coarse.result->frequencies_rad_s;
+  const auto& cc = coarser.result->frequencies_rad_s;
+  if (!f.empty()) {
+    auto family = [](const Result& res, std::size_t i) {
+      return i < res.mode_families.size() ? res.mode_families[i] : ModeFamily::Unknown;
+    };
+    std::string problem;
+    if (!std::isfinite(next_order)) problem = "this back-end states no next order of its error expansion for this mesh family";
+    else if (c.size() < f.size() || cc.size() < f.size())
+      problem = fmt::format("the coarser meshes have {} and {} of the {} modes", c.size(), cc.size(), f.size());
+    for (std::size_t i = 0; problem.empty() && i < f.size(); ++i) {
+      const ModeFamily a = family(fine, i), b = family(*coarse.result, i), d = family(*coarser.result, i);
+      if (a != b || a != d)
+        problem = fmt::format("mode {} is {} on mesh {} but {} and {} on the coarser ones (the modes cross between the "
+                              "meshes)",
+                              i + 1, to_string(a), fine.summary.mesh, to_string(b), to_string(d));
+      else if ((f[i] == 0) != (c[i] == 0) || (f[i] == 0) != (cc[i] == 0))
+        problem = fmt::format("mode {} is a rigid-body zero on some of the three meshes only", i + 1);
+    }
+    if (problem.empty()) {
+      double worst = 0;
+      std::vector<std::string> pre_asymptotic;
+      std::vector<std::size_t> lower_remainder;
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        if (f[i] == 0) {
+          x.frequencies_rad_s.push_back(0.0);
+          x.frequency_errors.push_back(0.0);
+          x.observed_orders.push_back(kNotMeasured);
+          continue;
+        }
+        // Differences within ten times the solve's rounding say nothing of the order.
+        const double noise = 10.0 * std::max(solve, 1e-13) * std::abs(f[i]);
+        const double fccc = on_fourth([&](const Result& res) {
+          return i < res.frequencies_rad_s.size() && family(res, i) == family(fine, i) && res.frequencies_rad_s[i] != 0
+                     ? res.frequencies_rad_s[i]
+                     : kNotMeasured;
+        });
+        const Extrapolated e = extrapolate(f[i], c[i], cc[i], fccc, r, r2, r3, p, next_order, noise);
+        if (std::isfinite(e.remainder_order) && e.remainder_order < next_order) lower_remainder.push_back(i + 1);
+        double rel = e.error / std::abs(e.value);
+        const double d1 = f[i] - c[i], d2 = c[i] - cc[i];
+        const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, p) : kNotMeasured;
+        x.observed_orders.push_back(po);
+        const bool resolved = std::abs(d2) <= kMaxCoarseDifference * std::abs(f[i]);
+        if (!resolved || ((std::abs(d1) > noise && std::abs(d2) > noise) && !(std::abs(po - p) <= kAsymptoticOrderTolerance * p))) {
+          rel = std::max(rel, kSafety * std::abs(d1) / (std::pow(r, p) - 1.0) / std::abs(f[i]));
+          pre_asymptotic.push_back(std::isfinite(po) ? fmt::format("{} ({:.2g})", i + 1, po) : fmt::format("{} (none)", i + 1));
+        }
+        rel += solve;
+        x.frequencies_rad_s.push_back(e.value);
+        x.frequency_errors.push_back(std::isfinite(rel) ? rel : std::numeric_limits<double>::infinity());
+        worst = std::max(worst, x.frequency_errors.back());
+      }
+      x.frequency_error = worst;
+      if (!lower_remainder.empty()) {
+        std::string list;
+        for (auto m : lower_remainder) list += (list.empty() ? "" : ", ") + std::to_string(m);
+        why.push_back(fmt::format("modes {}: the extrapolated values of the four meshes converge below order {:g}, and "
+                                  "their estimates use the order observed",
+                                  list, next_order));
+      }
+      if (!pre_asymptotic.empty()) {
+        std::string list;
+        for (const auto& m : pre_asymptotic) list += (list.empty() ? "" : ", ") + m;
+        why.push_back(fmt::format("modes {} (observed orders): the three meshes are not yet asymptotic (an order more "
+                                  "than {:g} % from {:g}, or the two coarser meshes more than {:g} % apart), so their "
+                                  "estimate is no better than the mesh's own",
+                                  list, 100 * kAsymptoticOrderTolerance, p, 100 * kMaxCoarseDifference));
+      }
+    } else {
+      why.push_back("frequencies not extrapolated: " + problem);
+    }
+  }
+  // Deflections: every component of every probe.
+  const auto& d = fine.deflections;
+  const auto& dc = coarse.result->deflections;
+  const auto& dcc = coarser.result->deflections;
+  if (!d.empty()) {
+    if (dc.size() != d.size() || dcc.size() != d.size()) {
+      why.push_back("deflections not extrapolated: the coarser meshes lack probes");
+    } else {
+      const double sd = std::isfinite(deflection_next_order) ? deflection_next_order : p;
+      double scale = 0, worst = 0;
+      for (std::size_t i = 0; i < d.size(); ++i) {
+        Deflection out = d[i];
+        using Member = double Deflection::*;
+        static constexpr std::array<Member, 6> members{&Deflection::u, &Deflection::v, &Deflection::w,
+                                                       &Deflection::theta_x, &Deflection::theta_y, &Deflection::theta_z};
+        for (std::size_t k = 0; k < members.size(); ++k) {
+          const Member m = members[k];
+          const double qccc = on_fourth([&](const Result& res) {
+            return res.deflections.size() == d.size() ? res.deflections[i].*m : kNotMeasured;
+          });
+          const Extrapolated e = extrapolate(d[i].*m, dc[i].*m, dcc[i].*m, qccc, r, r2, r3, p, sd,
+                                             1e-12 * std::abs(d[i].*m));
+          out.*m = e.value;
+          if (k < 3) {
+            scale = std::max(scale, std::abs(e.value));
+            worst = std::max(worst, e.error);
+          }
+        }
+        x.deflections.push_back(out);
+      }
+      x.deflection_error = scale > 0 ? worst / scale : (worst > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+    }
+  }
+  std::string how = fmt::format("Richardson: R = q(h) + (q(h) - q(H)) / (r^{0:g} - 1) on meshes {1} (r = {2:.3g}, {3:.3g}{4}); "
+                                "estimate {5:g} |R(h) - R(H)| scaled for an error term of order {6:g} (frequencies)",
+                                p, x.meshes, r, r2, fourth ? fmt::format(", {:.3g}", r3) : std::string(), kSafety, next_order);
+  if (!d.empty())
+    how += fmt::format(" and {:g} (deflections)", std::isfinite(deflection_next_order) ? deflection_next_order : p);
+  if (fourth)
+    how += fmt::format(", or {:g} times the same estimate of R(H) carried to h where larger (the fourth mesh), with the "
+                       "order R's sequence shows where lower",
+                       kGuardSafety);
+  if (solve > 0) how += fmt::format(", plus the solve's own bound {:.2g}", solve);
+  for (const auto& w : why) how += "; " + w;
+  x.note = how;
+  return x;
+}
+
+}  // namespace modalbench
