@@ -90,8 +90,9 @@ RunRecord timed_run(const Solver& s, const Scene& scene, const Discretization& m
 }
 
 /// Richardson-extrapolated runs of one back-end's ladder (extrapolation.hpp), as a peer of its own:
-/// "<back-end>+richardson", one per rung whose two predecessors are uniform coarsenings of it,
-/// timed as the three solves together (what a user pays for the extrapolated values). Made only
+/// "<back-end>+richardson", one per rung whose two predecessors are its coarser meshes (and the
+/// third, where it is the next again), timed as those solves together (what `modalbench solve
+/// --mesh` pays for the extrapolated values and their estimate). Made only
 /// where the runs tend to the scene's theory (their error is then measured against the exact
 /// solution, not against a limit of their own) and the back-end states the next order of its
 /// expansion for the family.
@@ -104,8 +105,15 @@ std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, cons
     const std::optional<CoarserMesh> h = s.coarser_mesh(scene, f.mesh, opt);
     const std::optional<CoarserMesh> hh = s.coarser_mesh(scene, c.mesh, opt);
     if (!h || !hh || h->mesh.counts != c.mesh.counts || hh->mesh.counts != cc.mesh.counts) continue;
+    // The rung below, where it is the next coarsening again, checks the extrapolated values' order.
+    const std::optional<CoarserMesh> hhh = s.coarser_mesh(scene, cc.mesh, opt);
+    const RunRecord* ccc = k >= 3 && hhh && hhh->mesh.counts == runs[k - 3].mesh.counts && !runs[k - 3].failed()
+                               ? &runs[k - 3]
+                               : nullptr;
+    const ExtrapolationMesh fourth{ccc ? &ccc->result : nullptr, hhh ? hhh->ratio : kNaN};
     const Extrapolation x = richardson_extrapolate(f.result, {&c.result, h->ratio}, {&cc.result, hh->ratio}, h->order,
-                                                   h->next_order, kNaN, f.result.summary.diagnostic("frequency_solve_error_bound"));
+                                                   h->next_order, kNaN, f.result.summary.diagnostic("frequency_solve_error_bound"),
+                                                   ccc ? &fourth : nullptr);
     if (x.frequencies_rad_s.empty() && x.deflections.empty()) continue;
     RunRecord rec = f;
     rec.backend = s.name() + "+richardson";
@@ -120,7 +128,7 @@ std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, cons
     for (Quantity q : {Quantity::Frequencies, Quantity::Deflections}) {
       const bool made = q == Quantity::Frequencies ? !x.frequencies_rad_s.empty() : !x.deflections.empty();
       if (!made) continue;
-      const double t = f.time_s.of(q) + c.time_s.of(q) + cc.time_s.of(q);
+      const double t = f.time_s.of(q) + c.time_s.of(q) + cc.time_s.of(q) + (ccc ? ccc->time_s.of(q) : 0.0);
       (q == Quantity::Frequencies ? rec.time_s.modes : rec.time_s.statics) = t;
       if (std::isfinite(t)) rec.median_s += t;
     }
