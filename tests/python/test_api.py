@@ -129,6 +129,28 @@ def test_shapes_and_frf_come_as_arrays():
     assert abs(r.frf_receptance[0].real * 3 * EI - 1) < 1e-3
 
 
+def test_extrapolated_frequencies_come_as_an_array_within_their_estimate():
+    # A cantilever Euler-Bernoulli beam: exact frequencies (beta L)^2 sqrt(EI / (rho A L^4)).
+    d = {
+        "scene": {"name": "extrapolated", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
+        "geometry": {"length": 1.0, "width": 0.1, "height": 0.1},
+        "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
+        "supports": {"x0": "clamped", "xL": "free"},
+        "request": {"modes": 3},
+    }
+    r = mb.solve(mb.Scene.from_dict(d), "rfem", mesh="64")
+    x = r.extrapolated_frequencies_rad_s
+    assert x is not None and x.shape == (3,), r.extrapolation_note
+    EI, rhoA = 2.1e11 * 0.1**4 / 12, 7850.0 * 0.01
+    beta_l = np.array([1.8751040687119611, 4.6940911329741746, 7.8547574382376126])
+    exact = beta_l**2 * np.sqrt(EI / rhoA)
+    err = np.abs(x / exact - 1)
+    errors = r.as_dict["extrapolated"]["frequency_errors"]
+    assert np.all(err <= errors)
+    assert np.max(err) < 0.1 * np.max(np.abs(r.frequencies_rad_s / exact - 1))
+    assert r.extrapolated_frequency_error == max(errors)
+
+
 def test_the_gil_is_released_while_a_backend_works():
     s = mb.load_scene(SCENES / "paper_ss_plate.toml")
     ticks = 0
