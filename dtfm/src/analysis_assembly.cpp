@@ -1,6 +1,9 @@
 // LineAnalysis assembly: segment dynamic stiffnesses into K(lambda), and the Wittrick-Williams count.
 #include "modalbench/dtfm/analysis.hpp"
 
+#include <exception>
+#include <thread>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -88,24 +91,59 @@ AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, const Mat& 
 
 }  // namespace
 
+thread_local LineAnalysis::Tally* LineAnalysis::tally_ = nullptr;
+
+void LineAnalysis::side_by_side(std::size_t n, const std::function<void(std::size_t)>& task) {
+  if (n < 2 || tally_ || std::thread::hardware_concurrency() < 2) {
+    for (std::size_t i = 0; i < n; ++i) task(i);
+    return;
+  }
+  Tally mine, theirs;
+  std::exception_ptr e_mine, e_theirs;
+  auto run = [&](std::size_t first, Tally& t, std::exception_ptr& e) {
+    tally_ = &t;
+    try {
+      for (std::size_t i = first; i < n; i += 2) task(i);
+    } catch (...) {
+      e = std::current_exception();
+    }
+    tally_ = nullptr;
+  };
+  std::thread worker(run, std::size_t{1}, std::ref(theirs), std::ref(e_theirs));
+  run(0, mine, e_mine);
+  worker.join();
+  for (const Tally* t : {&mine, &theirs}) {
+    max_asymmetry_ = std::max(max_asymmetry_, t->asymmetry);
+    max_unknowns_ = std::max(max_unknowns_, t->unknowns);
+    evaluations_ += t->evaluations;
+  }
+  threads_used_ = 2;
+  if (e_mine) std::rethrow_exception(e_mine);
+  if (e_theirs) std::rethrow_exception(e_theirs);
+}
+
 LineAnalysis::Assembled LineAnalysis::assemble(const ClassLine& c, double lambda, const Mesh& mesh) {
   Assembled out{BlockTridiagonal(static_cast<int>(mesh.x.size()), c.mc), {}};
+  double& asymmetry = tally_ ? tally_->asymmetry : max_asymmetry_;
+  long& unknowns = tally_ ? tally_->unknowns : max_unknowns_;
   out.info = assemble_into<BlockTridiagonal, Eigen::MatrixXd, double>(out.K, c, c.state(lambda), mesh.x,
-                                                                      mesh.h_base, max_asymmetry_);
-  max_unknowns_ = std::max<long>(max_unknowns_, out.K.free_dofs());
+                                                                      mesh.h_base, asymmetry);
+  unknowns = std::max<long>(unknowns, out.K.free_dofs());
   return out;
 }
 
 ComplexBlockTridiagonal LineAnalysis::assemble(const ClassLine& c, std::complex<double> lambda, const Mesh& mesh) {
   ComplexBlockTridiagonal K(static_cast<int>(mesh.x.size()), c.mc);
+  double& asymmetry = tally_ ? tally_->asymmetry : max_asymmetry_;
+  long& unknowns = tally_ ? tally_->unknowns : max_unknowns_;
   assemble_into<ComplexBlockTridiagonal, Eigen::MatrixXcd, std::complex<double>>(K, c, c.state(lambda), mesh.x,
-                                                                                 mesh.h_base, max_asymmetry_);
-  max_unknowns_ = std::max<long>(max_unknowns_, K.free_dofs());
+                                                                                 mesh.h_base, asymmetry);
+  unknowns = std::max<long>(unknowns, K.free_dofs());
   return K;
 }
 
 CountDet LineAnalysis::count_det(const ClassLine& c, double lambda, const Mesh& mesh) {
-  ++evaluations_;
+  ++(tally_ ? tally_->evaluations : evaluations_);
   // A segment whose condensed middle block is nearly singular (lambda close to a clamped
   // frequency of a sub-piece) is split at its middle: the global LDL^T then pivots across it.
   Mesh use = mesh;

@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -291,13 +292,16 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   const double scale = model_.lambda_scale;
   const double delta = kRigidThreshold * scale;
   std::vector<Mesh> mesh(lines_.size());
+  // The classes are independent line problems: each step below runs them side by side.
   auto refresh = [&](double lam) {
-    for (int c : cls) mesh[c] = mesh_for(*lines_[c], lam, {});
+    side_by_side(cls.size(), [&](std::size_t i) { mesh[cls[i]] = mesh_for(*lines_[cls[i]], lam, {}); });
   };
   auto total = [&](double lam) {
-    int n = 0;
-    for (int c : cls) n += count_det(*lines_[c], lam, mesh[c]).count;
-    return n;
+    std::vector<int> n(cls.size(), 0);
+    side_by_side(cls.size(), [&](std::size_t i) { n[i] = count_det(*lines_[cls[i]], lam, mesh[cls[i]]).count; });
+    int sum = 0;
+    for (int v : n) sum += v;
+    return sum;
   };
   refresh(scale);
   // A plate's rigid-body motions that no edge reaches are exact zeros of the model, but its count
@@ -409,16 +413,33 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
         }
       }
     }
-    for (int c : cls) {
+    // Each class sliced on its own (side by side), its findings merged in class order after.
+    struct Sliced {
       SliceStats st;
       std::vector<double> vals;
       std::vector<const Band*> band_of;
+      ModeList notes;  // count_consistent, count_message of the class's re-polish
+    };
+    std::vector<Sliced> sliced(cls.size());
+    side_by_side(cls.size(), [&](std::size_t i) {
+      const int c = cls[i];
+      Sliced& sl = sliced[i];
       for (const Band& band : bands[c]) {
         auto v = slice_interval_polished([&](double lam) { return count_det(*lines_[c], lam, band.mesh); }, band.lo,
-                                         band.hi, ctl_.rel_tol, 1e-14 * scale, &st);
-        if (model_.kind == SceneKind::Beam) repolish_near_poles(*lines_[c], band.mesh, band.hi, v, out, &st);
-        vals.insert(vals.end(), v.begin(), v.end());
-        band_of.insert(band_of.end(), v.size(), &band);
+                                         band.hi, ctl_.rel_tol, 1e-14 * scale, &sl.st);
+        if (model_.kind == SceneKind::Beam) repolish_near_poles(*lines_[c], band.mesh, band.hi, v, sl.notes, &sl.st);
+        sl.vals.insert(sl.vals.end(), v.begin(), v.end());
+        sl.band_of.insert(sl.band_of.end(), v.size(), &band);
+      }
+    });
+    for (std::size_t ci = 0; ci < cls.size(); ++ci) {
+      const int c = cls[ci];
+      const SliceStats& st = sliced[ci].st;
+      const std::vector<double>& vals = sliced[ci].vals;
+      const std::vector<const Band*>& band_of = sliced[ci].band_of;
+      if (!sliced[ci].notes.count_consistent) {
+        out.count_consistent = false;
+        out.count_message += (out.count_message.empty() ? "" : "; ") + sliced[ci].notes.count_message;
       }
       out.polish_floor_width = std::max(out.polish_floor_width, st.polish_floor_width);
       for (std::size_t j = 0; j < vals.size(); ++j) {
@@ -486,8 +507,21 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     alt.emplace_back(m, alt_of(*m));
     return alt.back().second;
   };
+  // The second discretizations first (one per band, shared by its modes), then every mode's two
+  // counts side by side (count_det reads its class and mesh only), then the verdicts in order.
+  const std::size_t first = static_cast<std::size_t>(out.rigid);
+  std::vector<const Mesh*> alt_mesh(all.size(), nullptr);
+  for (std::size_t i = first; i < all.size(); ++i)
+    if (!all[i].near) alt_mesh[i] = &alt_for(all[i].mesh ? all[i].mesh : &mesh[all[i].cls]);
+  std::vector<std::array<int, 2>> got(all.size(), {0, 0});
+  side_by_side(all.size() - first, [&](std::size_t j) {
+    const std::size_t i = first + j;
+    if (!alt_mesh[i]) return;
+    got[i][0] = count_det(*lines_[all[i].cls], all[i].lambda * (1 - tau), *alt_mesh[i]).count;
+    got[i][1] = count_det(*lines_[all[i].cls], all[i].lambda * (1 + tau), *alt_mesh[i]).count;
+  });
   int failures = 0;
-  for (std::size_t i = static_cast<std::size_t>(out.rigid); i < all.size(); ++i) {
+  for (std::size_t i = first; i < all.size(); ++i) {
     if (all[i].near) {  // below the count's resolution: checked by its own bound instead
       out.reproducible.push_back(true);
       continue;
@@ -500,9 +534,7 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
         below += f.lambda < lam * (1 - tau);
         upto += f.lambda <= lam * (1 + tau);
       }
-    const Mesh& a = alt_for(all[i].mesh ? all[i].mesh : &mesh[c]);
-    const int got_lo = count_det(*lines_[c], lam * (1 - tau), a).count;
-    const int got_hi = count_det(*lines_[c], lam * (1 + tau), a).count;
+    const int got_lo = got[i][0], got_hi = got[i][1];
     const bool ok = got_lo == below && got_hi >= upto;
     out.reproducible.push_back(ok);
     if (!ok) {

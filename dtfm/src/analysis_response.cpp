@@ -215,9 +215,6 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
                                                            int* skipped, std::string* reason) {
   std::vector<std::complex<double>> H(omegas.size(), 0.0);
   if (skipped) *skipped = 0;
-  auto why = [&](std::size_t s, const std::exception& e) {
-    if (reason && reason->empty()) *reason = fmt::format("at {:.6g} rad/s: {}", omegas[s], e.what());
-  };
   if (omegas.empty()) return H;
   PointLoad unit;
   unit.x = excite[0];
@@ -228,6 +225,7 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
   const double w_max = *std::max_element(omegas.begin(), omegas.end());
   const std::complex<double> cdamp(1.0, eta);
   std::vector<char> bad(omegas.size(), 0);
+  std::vector<std::string> failure(omegas.size());  // per sample (samples run side by side)
   for (const auto& line : lines_) {
     ClassLine& c = *line;
     const Eigen::VectorXd fc0 = c.W.transpose() * f_full / c.sigma;
@@ -254,7 +252,8 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
       const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> dc = near_node<Scalar>(c, lambda, x, mesh.h_base, d, io, ob.t);
       return (oc.template cast<Scalar>() * dc)(0);
     };
-    for (std::size_t s = 0; s < omegas.size(); ++s) {
+    // The samples side by side: each solve reads the class and the mesh and writes its own slot.
+    side_by_side(omegas.size(), [&](std::size_t s) {
       const double lam = omegas[s] * omegas[s];
       if (eta == 0.0) {
         Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
@@ -264,7 +263,7 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
           H[s] += observe_at(d, lam);
         } catch (const std::runtime_error& e) {
           bad[s] = 1;
-          why(s, e);
+          failure[s] = e.what();
         }
       } else {
         Eigen::VectorXcd f = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(nn) * c.mc);
@@ -275,12 +274,13 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
           H[s] += observe_at(d, lam_c);
         } catch (const std::runtime_error& e) {
           bad[s] = 1;
-          why(s, e);
+          failure[s] = e.what();
         }
       }
-    }
+    });
   }
   for (std::size_t s = 0; s < omegas.size(); ++s) {
+    if (bad[s] && reason && reason->empty()) *reason = fmt::format("at {:.6g} rad/s: {}", omegas[s], failure[s]);
     if (bad[s]) {
       H[s] = std::numeric_limits<double>::quiet_NaN();
       if (skipped) ++*skipped;

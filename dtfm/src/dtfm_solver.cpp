@@ -233,6 +233,7 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
   sum.set_diagnostic("count_evaluations", static_cast<double>(la.evaluations()));
   sum.set_diagnostic("segment_asymmetry", la.max_asymmetry());
   sum.unknowns = la.max_unknowns();
+  sum.threads = std::max(sum.threads, la.threads_used());
   if (la.max_asymmetry() > 1e-6)
     sum.warnings.push_back(fmt::format("segment matrices asymmetric to {:.2e}: the state matrices are not "
                                        "Hamiltonian to working precision",

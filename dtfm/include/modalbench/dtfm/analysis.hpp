@@ -37,6 +37,7 @@
 
 #include <array>
 #include <complex>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -118,6 +119,8 @@ class LineAnalysis {
   /// leave the modes' figures as they are).
   long max_shape_unknowns() const { return max_shape_unknowns_; }
   int classes() const { return static_cast<int>(lines_.size()); }
+  /// Threads that worked at once in the calls so far (2 where classes or FRF samples ran side by side).
+  int threads_used() const { return threads_used_; }
 
   struct ClassLine;  // one symmetry class as a scaled line problem (src/analysis_detail.hpp)
 
@@ -129,6 +132,18 @@ class LineAnalysis {
   long max_unknowns_ = 0;
   long max_shape_unknowns_ = 0;
   long evaluations_ = 0;
+  int threads_used_ = 1;
+  /// The running figures above as gathered on one thread while tasks run side by side: merged
+  /// into them when the threads join.
+  struct Tally {
+    double asymmetry = 0;
+    long unknowns = 0, evaluations = 0;
+  };
+  static thread_local Tally* tally_;  ///< this thread's, inside side_by_side (else the members)
+  /// Runs task(i) for i in [0, n) on this thread (even i) and a second one (odd i) where the machine
+  /// has two cores, else in order here. Tasks of different i must share nothing they write but
+  /// their own slots (each class is its own line problem). Rethrows the first exception.
+  void side_by_side(std::size_t n, const std::function<void(std::size_t)>& task);
 
   /// Global nodes and the longest base piece for lambda in [0, lambda_max].
   struct Mesh {
