@@ -184,6 +184,12 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
         const double d1 = f[i] - c[i], d2 = c[i] - cc[i];
         const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, p) : kNotMeasured;
         x.observed_orders.push_back(po);
+        // The order itself is known only as well as the meshes show it: the step with the observed
+        // order instead of p moves R by |d1| |1 / (r^p - 1) - 1 / (r^po - 1)|, which is added (mode 7
+        // of a plate with clamped long edges, rfem 40x24: observed 1.75, R 6.2e-5 off where the
+        // estimate for order 2 said 3.2e-5).
+        if (std::isfinite(po))
+          rel += std::abs(d1) * std::abs(1.0 / (std::pow(r, p) - 1.0) - 1.0 / (std::pow(r, po) - 1.0)) / std::abs(f[i]);
         const bool resolved = std::abs(d2) <= kMaxCoarseDifference * std::abs(f[i]);
         if (!resolved || ((std::abs(d1) > noise && std::abs(d2) > noise) && !(std::abs(po - p) <= kAsymptoticOrderTolerance * p))) {
           rel = std::max(rel, kSafety * std::abs(d1) / (std::pow(r, p) - 1.0) / std::abs(f[i]));

@@ -10,6 +10,8 @@
 //   e(R(h)) = |R(h) - R(H)| |c(r)| / |c(r) - c(r') r^s|      (equal ratios: |R(h) - R(H)| / (r^s - 1)),
 // and the estimate reported is Roache's factor of safety 3 (an order s assumed, not observed) times
 // that, plus the judged solve's own bound (rounding, which neither refinement nor extrapolation sees).
+// To it is added how far R would move with the order the three meshes show instead of p,
+// |q(h) - q(H)| |1 / (r^p - 1) - 1 / (r^po - 1)|: the leading order is known only that well.
 // With a fourth mesh 4H, R(2H) too: the order of R's own sequence is observed (and used where it
 // is below s), and the larger of that estimate and 1.25 times the one of R(H) carried to h is
 // reported (Roache's guard, as for the mesh's own estimate in result.hpp).
