@@ -5,6 +5,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <map>
 
 #include "modalbench/exact/exact.hpp"
 #include "modalbench/harness/comparison.hpp"
@@ -78,6 +79,39 @@ class Scaled final : public Solver {
   std::string name_;
   double scale_;
   bool theory_;
+};
+
+/// Exact frequencies times (1 + 0.5 i / n^2 + 2 i / n^4) on meshes 4 ... 32, with the coarser meshes
+/// and the error expansion (orders 2, then 4) a back-end states for its extrapolation.
+class Quartic final : public Solver {
+ public:
+  std::string name() const override { return "quartic"; }
+  std::string description() const override { return "exact * (1 + c/n^2 + d/n^4)"; }
+  Capability supports(const Scene&) const override { return {true, false, false, ""}; }
+  Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
+  std::vector<Discretization> mesh_ladder(const Scene&) const override {
+    return {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16"), Discretization::parse("32")};
+  }
+  std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization& mesh, const Options&) const override {
+    if (mesh.counts.at(0) < 2) return std::nullopt;
+    return CoarserMesh{{{mesh.counts[0] / 2}}, 2.0, 2.0, 4.0};
+  }
+
+ protected:
+  void do_solve(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const override {
+    Scene modes_only = s;
+    modes_only.request.probes.clear();
+    modes_only.request.frf.reset();
+    const Result x = exact::ExactSolver().solve(modes_only, {}, o);
+    const double n = mesh.counts.at(0);
+    for (std::size_t i = 0; i < x.frequencies_rad_s.size(); ++i) {
+      const double c = static_cast<double>(i + 1);
+      r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * (1 + 0.5 * c / (n * n) + 2.0 * c / std::pow(n, 4)));
+      r.mode_families.push_back(x.mode_families[i]);
+    }
+    r.summary.converges_to_scene_theory = true;
+    fake_now += 0.001 * n;  // a rung costs n ms
+  }
 };
 
 const ModelLimit& limit_of(const SceneComparison& c, const std::string& label) {
@@ -227,4 +261,36 @@ BOOST_AUTO_TEST_CASE(nafems_fv5_scene_against_closed_forms) {
     BOOST_TEST(r.frequencies_rad_s[i] == expected[i], tt::tolerance(1e-8));
   BOOST_TEST(axial / (2 * pi) == 125.0, tt::tolerance(1e-12));  // NAFEMS: 125.00 Hz
   BOOST_TEST(bending(1) / (2 * pi) == 42.649, tt::tolerance(2e-4));  // NAFEMS: 42.649 Hz
+}
+
+// A back-end that states its expansion gets a "+richardson" peer: one run per rung with two coarser
+// rungs below it, its frequencies the extrapolated ones (their error the h^4 remainder, -4 d / n^4
+// relative), timed as the rungs it uses together.
+BOOST_AUTO_TEST_CASE(extrapolated_peers_are_compared_and_timed_as_their_meshes) {
+  Registry reg;
+  reg.add(std::make_unique<exact::ExactSolver>());
+  reg.add(std::make_unique<Quartic>());
+  CompareOptions opt;
+  opt.shapes = false;
+  opt.clock = [] { return fake_now; };
+  const auto all = run_comparison({beam_scene()}, reg, opt);
+  const SceneComparison& c = all[0];
+  std::map<int, const RunRecord*> own, peer;
+  for (const auto& r : c.runs) {
+    if (r.backend == "quartic") own[r.mesh.counts.at(0)] = &r;
+    if (r.backend == "quartic+richardson") peer[r.mesh.counts.at(0)] = &r;
+  }
+  BOOST_REQUIRE(own.size() == 4u);
+  BOOST_REQUIRE(peer.size() == 2u);  // 16 (from 8 and 4) and 32 (from 16, 8 and 4)
+  for (const auto& [n, r] : peer) {
+    // Mode 6 is the worst: 4 * 2 * 6 / n^4 left by the step (c(2) = -4 for a remainder of order 4).
+    BOOST_TEST(r->disc_frequency_error == 48.0 / std::pow(n, 4), tt::tolerance(1e-3));
+    BOOST_TEST(r->disc_frequency_error < 0.1 * own[n]->disc_frequency_error);
+    double t = own[n]->time_s.modes + own[n / 2]->time_s.modes + own[n / 4]->time_s.modes;
+    if (n == 32) t += own[4]->time_s.modes;  // the fourth mesh checks the extrapolation's order
+    BOOST_TEST(r->time_s.modes == t, tt::tolerance(1e-9));
+    BOOST_TEST(r->result.summary.method.find("Richardson") != std::string::npos);
+  }
+  BOOST_TEST(std::log2(peer[16]->disc_frequency_error / peer[32]->disc_frequency_error) == 4.0, tt::tolerance(0.01));
+  BOOST_TEST(time_to_accuracy(c, "quartic+richardson", 1e-3) == peer[16]->time_s.modes);
 }
