@@ -3,7 +3,7 @@
 // (observed over a ladder), its estimate must bound its true error without being wildly loose,
 // and what cannot be extrapolated must say so.
 #define BOOST_TEST_MODULE extrapolation
-#include <boost/test/included/unit_test.hpp>
+#include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <functional>
