@@ -515,7 +515,8 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     std::vector<std::string> estimate_warnings;
     std::string refined_note;
     double estimate_time = 0;
-    // The two coarser solves of the estimate, kept for the Richardson extrapolation (extrapolation.hpp).
+    // The coarser solves of the estimate (H, 2H, and 4H where the family extrapolates), kept for the
+    // Richardson extrapolation (extrapolation.hpp).
     Result kept_H, kept_2H, kept_4H;
     double kept_ratio = kNotMeasured, kept_ratio2 = kNotMeasured, kept_ratio3 = kNotMeasured;
     bool kept_three = false, kept_four = false;
