@@ -47,54 +47,24 @@ class Phased final : public Solver {
   }
 };
 
-/// Exact frequencies times `scale` (1 + 0.5 i / n^2) on meshes 4, 8, 16, 32: a second-order
-/// method whose model is the scene's theory (scale 1) or another model (scale != 1).
+/// Exact frequencies times `scale` (1 + 0.5 i / n^2 + d i / n^4) on meshes 4, 8, 16, 32: a
+/// second-order method whose model is the scene's theory (scale 1) or another model (scale != 1).
+/// With a stated next order (`next`), it offers the coarser meshes and the error expansion a
+/// back-end states for its extrapolation; `ms_per_n`: what a rung costs on the fake clock.
 class Scaled final : public Solver {
  public:
-  Scaled(std::string name, double scale, bool theory) : name_(std::move(name)), scale_(scale), theory_(theory) {}
+  Scaled(std::string name, double scale, bool theory, double d = 0, double next = kNaN, double ms_per_n = 0)
+      : name_(std::move(name)), scale_(scale), theory_(theory), d_(d), next_(next), ms_per_n_(ms_per_n) {}
   std::string name() const override { return name_; }
-  std::string description() const override { return "exact * scale * (1 + c/n^2)"; }
-  Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
-  std::vector<Discretization> mesh_ladder(const Scene&) const override {
-    return {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16"), Discretization::parse("32")};
-  }
-
- protected:
-  void do_solve(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const override {
-    Scene modes_only = s;
-    modes_only.request.probes.clear();
-    modes_only.request.frf.reset();
-    const Result x = exact::ExactSolver().solve(modes_only, {}, o);
-    const double n = mesh.counts.at(0);
-    for (std::size_t i = 0; i < x.frequencies_rad_s.size(); ++i) {
-      r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * scale_ * (1 + 0.5 * static_cast<double>(i + 1) / (n * n)));
-      r.mode_families.push_back(x.mode_families[i]);
-    }
-    r.summary.unknowns = static_cast<long>(2 * n);
-    r.summary.converges_to_scene_theory = theory_;
-  }
-
- private:
-  std::string name_;
-  double scale_;
-  bool theory_;
-};
-
-/// Exact frequencies times (1 + 0.5 i / n^2 + 2 i / n^4) on meshes 4 ... 32, with the coarser meshes
-/// and the error expansion (orders 2, then 4) a back-end states for its extrapolation.
-class Quartic final : public Solver {
- public:
-  std::string name() const override { return "quartic"; }
-  std::string description() const override { return "exact * (1 + c/n^2 + d/n^4)"; }
+  std::string description() const override { return "exact * scale * (1 + c/n^2 + d/n^4)"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
   Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
   std::vector<Discretization> mesh_ladder(const Scene&) const override {
     return {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16"), Discretization::parse("32")};
   }
   std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization& mesh, const Options&) const override {
-    if (mesh.counts.at(0) < 2) return std::nullopt;
-    return CoarserMesh{{{mesh.counts[0] / 2}}, 2.0, 2.0, 4.0};
+    if (std::isnan(next_) || mesh.counts.at(0) < 2) return std::nullopt;
+    return CoarserMesh{{{mesh.counts[0] / 2}}, 2.0, 2.0, next_};
   }
 
  protected:
@@ -106,12 +76,19 @@ class Quartic final : public Solver {
     const double n = mesh.counts.at(0);
     for (std::size_t i = 0; i < x.frequencies_rad_s.size(); ++i) {
       const double c = static_cast<double>(i + 1);
-      r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * (1 + 0.5 * c / (n * n) + 2.0 * c / std::pow(n, 4)));
+      r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * scale_ * (1 + 0.5 * c / (n * n) + d_ * c / std::pow(n, 4)));
       r.mode_families.push_back(x.mode_families[i]);
     }
-    r.summary.converges_to_scene_theory = true;
-    fake_now += 0.001 * n;  // a rung costs n ms
+    r.summary.unknowns = static_cast<long>(2 * n);
+    r.summary.converges_to_scene_theory = theory_;
+    fake_now += 0.001 * ms_per_n_ * n;
   }
+
+ private:
+  std::string name_;
+  double scale_;
+  bool theory_;
+  double d_, next_, ms_per_n_;
 };
 
 const ModelLimit& limit_of(const SceneComparison& c, const std::string& label) {
@@ -269,7 +246,7 @@ BOOST_AUTO_TEST_CASE(nafems_fv5_scene_against_closed_forms) {
 BOOST_AUTO_TEST_CASE(extrapolated_peers_are_compared_and_timed_as_their_meshes) {
   Registry reg;
   reg.add(std::make_unique<exact::ExactSolver>());
-  reg.add(std::make_unique<Quartic>());
+  reg.add(std::make_unique<Scaled>("quartic", 1.0, true, 2.0, 4.0, 1.0));  // d = 2, next order 4, n ms a rung
   CompareOptions opt;
   opt.shapes = false;
   opt.clock = [] { return fake_now; };
