@@ -2,6 +2,7 @@
 #include "modalbench/dtfm/analysis.hpp"
 
 #include <exception>
+#include <system_error>
 #include <thread>
 
 #include <algorithm>
@@ -109,7 +110,14 @@ void LineAnalysis::side_by_side(std::size_t n, const std::function<void(std::siz
     }
     tally_ = nullptr;
   };
-  std::thread worker(run, std::size_t{1}, std::ref(theirs), std::ref(e_theirs));
+  std::thread worker;
+  try {
+    worker = std::thread(run, std::size_t{1}, std::ref(theirs), std::ref(e_theirs));
+  } catch (const std::system_error&) {
+    // No second thread to be had (a process or address-space limit): all of it here, in order.
+    for (std::size_t i = 0; i < n; ++i) task(i);
+    return;
+  }
   run(0, mine, e_mine);
   worker.join();
   for (const Tally* t : {&mine, &theirs}) {
