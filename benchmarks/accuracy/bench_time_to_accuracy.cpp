@@ -3,7 +3,7 @@
 // scene's reference is at most 1e-2, 1e-3, 1e-4 and 1e-5, with its mesh and peak memory. Each
 // back-end is run two ways through Solver::solve (the `modalbench solve --mesh M` path):
 //   mesh        the mesh alone (no error estimate: the time of the numbers themselves);
-//   richardson  the mesh with its error estimate (meshes h, h/2, h/4), reporting the Richardson
+//   richardson  the mesh with its error estimate (the mesh and its counts halved two or three times), reporting the Richardson
 //               values and their estimate (Result::extrapolated): the time is that of all three.
 // Scenes: the prism paper's plate as a Kirchhoff and as a Mindlin plate (kappa = 1; reference the
 // exact Navier and Mindlin values), its clamped-clamped Timoshenko beam (exact Timoshenko), and
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
 
   fmt::print("Time to accuracy: largest relative error of the first modes against the reference; each entry is the\n"
              "cheapest run reaching the target: median wall time of {} repeat(s) after a warm-up (mesh, peak resident MB).\n"
-             "'mesh': the mesh alone; 'richardson': the mesh and its two coarser meshes, the extrapolated values.\n",
+             "'mesh': the mesh alone; 'richardson': the mesh and its counts halved two or three times, the extrapolated values.\n",
              repeats);
   for (auto& k : cases) {
     if (!only.empty() && k.label.find(only) == std::string::npos) continue;
