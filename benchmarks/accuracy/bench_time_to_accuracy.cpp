@@ -3,8 +3,9 @@
 // scene's reference is at most 1e-2, 1e-3, 1e-4 and 1e-5, with its mesh and peak memory. Each
 // back-end is run two ways through Solver::solve (the `modalbench solve --mesh M` path):
 //   mesh        the mesh alone (no error estimate: the time of the numbers themselves);
-//   richardson  the mesh with its error estimate (the mesh and its counts halved two or three times), reporting the Richardson
-//               values and their estimate (Result::extrapolated): the time is that of all three.
+//   richardson  the mesh with its error estimate (its counts halved two or three times), reporting
+//               the Richardson values and their estimate (Result::extrapolated): the time is that of
+//               all the meshes.
 // Scenes: the prism paper's plate as a Kirchhoff and as a Mindlin plate (kappa = 1; reference the
 // exact Navier and Mindlin values), its clamped-clamped Timoshenko beam (exact Timoshenko), and
 // NAFEMS FV16's cantilever 10 x 10 x 0.05 m plate (no exact solution: the reference is the
