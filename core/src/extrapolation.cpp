@@ -3,6 +3,7 @@
 #include "modalbench/solver.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -12,14 +13,10 @@ namespace modalbench {
 
 namespace {
 
-/// Roache's factors of safety: 3 for an estimate whose order is assumed, not observed; 1.25 for the
-/// guard from the next coarser pair (as the mesh's own estimate, result.hpp).
-constexpr double kSafety = 3.0, kGuardSafety = 1.25;
+constexpr double kSafety = kRoacheSafetyFactor, kGuardSafety = kRoacheGuardFactor;
 
 /// c(r) of the header: the coefficient of D h^s left in R(h) by one Richardson step of ratio r.
 double residual_coefficient(double r, double p, double s) { return (std::pow(r, p) - std::pow(r, s)) / (std::pow(r, p) - 1.0); }
-
-double observed_order(double d1, double d2, double r, double r2, double p_max);
 
 /// The error of R(h), given D = R(h) - R(H) on ratios r (H / h) and r2 (2H / H), for a remainder
 /// of order s (s <= p: no gain assumed, R's own sequence then converges at p).
@@ -55,30 +52,13 @@ Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r,
   const double D1 = rh - rH, D2 = rH - r2H;
   double s_eff = s;
   if (std::abs(D1) > noise && std::abs(D2) > noise) {
-    x.remainder_order = observed_order(D1, D2, r, r2, s);
+    x.remainder_order = observed_order(D1, D2, r, r2, 0.25, 4 * s);
     if (x.remainder_order < s) s_eff = std::max(p, x.remainder_order);
   }
   const double e1 = extrapolation_error(D1, r, r2, p, s_eff);
   const double e2 = extrapolation_error(D2, r2, r3, p, s_eff) / std::pow(r, s_eff);
   x.error = std::max(kSafety * e1, kGuardSafety * e2);
   return x;
-}
-
-/// The order p at which errors C h^p give the differences d1 = q(h) - q(H), d2 = q(H) - q(2H) on
-/// ratios r and r2: d2 / d1 = r^p (r2^p - 1) / (r^p - 1), increasing in p. NaN where the
-/// differences change sign (not monotone) or the ratio is beyond [1/4, 4 p_max].
-double observed_order(double d1, double d2, double r, double r2, double p_max) {
-  if (!(d1 != 0) || !(d2 / d1 > 0)) return kNotMeasured;
-  auto ratio_at = [&](double q) { return std::pow(r, q) * (std::pow(r2, q) - 1.0) / (std::pow(r, q) - 1.0); };
-  double lo = 0.25, hi = 4 * p_max;
-  const double target = d2 / d1;
-  if (target <= ratio_at(lo)) return lo;
-  if (target >= ratio_at(hi)) return hi;
-  for (int it = 0; it < 80; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (ratio_at(mid) < target ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
 }
 
 /// How far the observed order may be from the formal one for the meshes to count as asymptotic.
@@ -94,13 +74,26 @@ bool usable(const Result* r) { return r && severity(r->summary.status) < severit
 
 }  // namespace
 
+double observed_order(double d1, double d2, double r, double r2, double lo, double hi) {
+  if (!(d1 != 0) || !(d2 / d1 > 0)) return kNotMeasured;
+  auto ratio_at = [&](double q) { return std::pow(r, q) * (std::pow(r2, q) - 1.0) / (std::pow(r, q) - 1.0); };
+  const double target = d2 / d1;
+  if (target <= ratio_at(lo)) return lo;
+  if (target >= ratio_at(hi)) return hi;
+  for (int it = 0; it < 80; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (ratio_at(mid) < target ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh& coarse,
                                      const ExtrapolationMesh& coarser, double order, double next_order,
-                                     double deflection_next_order, double solve_bound, const ExtrapolationMesh* coarsest) {
+                                     double solve_bound, const ExtrapolationMesh* coarsest) {
   Extrapolation x;
   x.order = order;
   x.next_order = next_order;
-  x.deflection_next_order = deflection_next_order;
+  x.deflection_next_order = order;
   if (!usable(&fine) || !usable(coarse.result) || !usable(coarser.result)) {
     x.note = "not extrapolated: one of the three meshes failed its checks";
     return x;
@@ -182,7 +175,7 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
         if (std::isfinite(e.remainder_order) && e.remainder_order < next_order) lower_remainder.push_back(i + 1);
         double rel = e.error / std::abs(e.value);
         const double d1 = f[i] - c[i], d2 = c[i] - cc[i];
-        const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, p) : kNotMeasured;
+        const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, 0.25, 4 * p) : kNotMeasured;
         x.observed_orders.push_back(po);
         // The order itself is known only as well as the meshes show it: the step with the observed
         // order instead of p moves R by |d1| |1 / (r^p - 1) - 1 / (r^po - 1)|, which is added (mode 7
@@ -201,21 +194,16 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
         worst = std::max(worst, x.frequency_errors.back());
       }
       x.frequency_error = worst;
-      if (!lower_remainder.empty()) {
-        std::string list;
-        for (auto m : lower_remainder) list += (list.empty() ? "" : ", ") + std::to_string(m);
+      if (!lower_remainder.empty())
         why.push_back(fmt::format("modes {}: the extrapolated values of the four meshes converge below order {:g}, and "
                                   "their estimates use the order observed",
-                                  list, next_order));
-      }
-      if (!pre_asymptotic.empty()) {
-        std::string list;
-        for (const auto& m : pre_asymptotic) list += (list.empty() ? "" : ", ") + m;
+                                  fmt::join(lower_remainder, ", "), next_order));
+      if (!pre_asymptotic.empty())
         why.push_back(fmt::format("modes {} (observed orders): the three meshes are not yet asymptotic (an order more "
                                   "than {:g} % from {:g}, or the two coarser meshes more than {:g} % apart), so their "
                                   "estimate is no better than the mesh's own",
-                                  list, 100 * kAsymptoticOrderTolerance, p, 100 * kMaxCoarseDifference));
-      }
+                                  fmt::join(pre_asymptotic, ", "), 100 * kAsymptoticOrderTolerance, p,
+                                  100 * kMaxCoarseDifference));
     } else {
       why.push_back("frequencies not extrapolated: " + problem);
     }
@@ -228,7 +216,6 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
     if (dc.size() != d.size() || dcc.size() != d.size()) {
       why.push_back("deflections not extrapolated: the coarser meshes lack probes");
     } else {
-      const double sd = std::isfinite(deflection_next_order) ? deflection_next_order : p;
       double scale = 0, worst = 0;
       for (std::size_t i = 0; i < d.size(); ++i) {
         Deflection out = d[i];
@@ -240,7 +227,7 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
           const double qccc = on_fourth([&](const Result& res) {
             return res.deflections.size() == d.size() ? res.deflections[i].*m : kNotMeasured;
           });
-          const Extrapolated e = extrapolate(d[i].*m, dc[i].*m, dcc[i].*m, qccc, r, r2, r3, p, sd,
+          const Extrapolated e = extrapolate(d[i].*m, dc[i].*m, dcc[i].*m, qccc, r, r2, r3, p, p,
                                              1e-12 * std::abs(d[i].*m));
           out.*m = e.value;
           if (k < 3) {
@@ -253,11 +240,14 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
       x.deflection_error = scale > 0 ? worst / scale : (worst > 0 ? std::numeric_limits<double>::infinity() : 0.0);
     }
   }
-  std::string how = fmt::format("Richardson: R = q(h) + (q(h) - q(H)) / (r^{0:g} - 1) on meshes {1} (r = {2:.3g}, {3:.3g}{4}); "
-                                "estimate {5:g} |R(h) - R(H)| scaled for an error term of order {6:g} (frequencies)",
-                                p, x.meshes, r, r2, fourth ? fmt::format(", {:.3g}", r3) : std::string(), kSafety, next_order);
-  if (!d.empty())
-    how += fmt::format(" and {:g} (deflections)", std::isfinite(deflection_next_order) ? deflection_next_order : p);
+  std::string how = fmt::format("Richardson: R = q(h) + (q(h) - q(H)) / (r^{:g} - 1) on meshes {} (r = {:.3g}, {:.3g}{})",
+                                p, x.meshes, r, r2, fourth ? fmt::format(", {:.3g}", r3) : std::string());
+  std::vector<std::string> orders;
+  if (!x.frequencies_rad_s.empty()) orders.push_back(fmt::format("{:g} (frequencies)", next_order));
+  if (!x.deflections.empty()) orders.push_back(fmt::format("{:g} (deflections)", p));
+  if (!orders.empty())
+    how += fmt::format("; estimate {:g} |R(h) - R(H)| scaled for an error term of order {}", kSafety,
+                       fmt::join(orders, " and "));
   if (fourth)
     how += fmt::format(", or {:g} times the same estimate of R(H) carried to h where larger (the fourth mesh), with the "
                        "order R's sequence shows where lower",

@@ -33,8 +33,8 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   }
   j["frequencies_rad_s"] = freqs;
   j["mode_families"] = fams;
-  json defl = json::array();
-  for (const auto& d : r.deflections) {
+  // One probe's deflection, in the components the scene carries (also for the extrapolated ones).
+  auto deflection = [&](const Deflection& d) {
     json e;
     if (scene.is_beam()) {
       e["position"] = json::array({d.position[0]});
@@ -51,8 +51,10 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
       e["w"] = num(d.w);
       e["rotation"] = json::array({num(d.theta_x), num(d.theta_y)});
     }
-    defl.push_back(e);
-  }
+    return e;
+  };
+  json defl = json::array();
+  for (const auto& d : r.deflections) defl.push_back(deflection(d));
   j["deflections"] = defl;
   if (!r.frf.empty() || scene.request.frf) {  // requested: present, even when no sample could be computed
     json f = json::array();
@@ -123,10 +125,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
     for (double v : xp.frequency_errors) xe.push_back(num(v));
     json xo = json::array();
     for (double v : xp.observed_orders) xo.push_back(num(v));
-    for (const auto& d : xp.deflections)
-      xd.push_back({{"position", scene.is_beam() ? json::array({d.position[0]}) : json::array({d.position[0], d.position[1]})},
-                    {"u", num(d.u)}, {"v", num(d.v)}, {"w", num(d.w)},
-                    {"theta_x", num(d.theta_x)}, {"theta_y", num(d.theta_y)}, {"theta_z", num(d.theta_z)}});
+    for (const auto& d : xp.deflections) xd.push_back(deflection(d));
     j["extrapolated"] = {{"frequencies_rad_s", xf},
                          {"frequency_errors", xe},
                          {"observed_orders", xo},

@@ -271,7 +271,7 @@ std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e
 /// Roache's factors of safety (result.hpp): 3 for a two-mesh estimate with the formal order, 1.25
 /// for the guard from the next coarser pair (a coarse pair converges faster than its formal order
 /// as a rule, so carrying it to h with that order over-states the error rather than under-states it).
-constexpr double kSafetyFactor = 3.0, kGuardFactor = 1.25;
+constexpr double kSafetyFactor = kRoacheSafetyFactor, kGuardFactor = kRoacheGuardFactor;
 
 /// A solve of the error estimate: its mesh, how much coarser it is than the next finer one, and
 /// its result.
@@ -315,21 +315,12 @@ std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Sc
     const double d1 = std::abs(q - qc), d2 = third && std::isfinite(qcc) ? std::abs(qc - qcc) : kNotMeasured;
     double dn = denom, dn2 = denom2;
     if (std::isfinite(noise) && std::isfinite(d2) && d1 > noise * scale && d2 > noise * scale) {
-      // d2 / d1 = r^p (r'^p - 1) / (r^p - 1) for errors C h^p (r, r' the two ratios), increasing in p.
-      const double r1 = coarse.ratio, r2 = coarser->ratio;
-      auto ratio_at = [&](double p) { return std::pow(r1, p) * (std::pow(r2, p) - 1.0) / (std::pow(r1, p) - 1.0); };
       // Only below first order: between that and the formal order (a point load's h^2 log h, a
       // Mindlin plate's mixed terms) the factor of safety 3 covers it, and widening there sent
       // the default meshes' refinement of dtfm plates past minutes.
       const double cap = std::min(order, 1.0);
-      if (d2 / d1 < ratio_at(cap)) {
-        double lo = 0.25, hi = cap;
-        if (d2 / d1 > ratio_at(lo))
-          for (int it = 0; it < 60; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            (ratio_at(mid) < d2 / d1 ? lo : hi) = mid;
-          }
-        const double p = lo;
+      const double p = observed_order(d1, d2, coarse.ratio, coarser->ratio, 0.25, cap);
+      if (p < cap) {
         lowest_order = std::min(lowest_order, p);
         const double rpo = std::pow(coarse.ratio, p);
         dn = rpo - 1.0;
@@ -696,8 +687,7 @@ Result Solver::solve(const Scene& scene, const Discretization& mesh, const Optio
     if (kept_three && coarse) {
       const ExtrapolationMesh fourth{&kept_4H, kept_ratio3};
       result.extrapolated = richardson_extrapolate(result, {&kept_H, kept_ratio}, {&kept_2H, kept_ratio2}, coarse->order,
-                                                   coarse->next_order, kNotMeasured,
-                                                   sum.diagnostic("frequency_solve_error_bound"),
+                                                   coarse->next_order, sum.diagnostic("frequency_solve_error_bound"),
                                                    kept_four ? &fourth : nullptr);
     }
     for (auto& w : estimate_warnings) sum.warnings.push_back(std::move(w));

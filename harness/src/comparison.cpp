@@ -96,10 +96,10 @@ RunRecord timed_run(const Solver& s, const Scene& scene, const Discretization& m
 /// where the runs tend to the scene's theory (their error is then measured against the exact
 /// solution, not against a limit of their own) and the back-end states the next order of its
 /// expansion for the family.
-std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, const std::vector<RunRecord>& runs) {
+std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, const std::vector<const RunRecord*>& runs) {
   std::vector<RunRecord> out;
   for (std::size_t k = 2; k < runs.size(); ++k) {
-    const RunRecord &f = runs[k], &c = runs[k - 1], &cc = runs[k - 2];
+    const RunRecord &f = *runs[k], &c = *runs[k - 1], &cc = *runs[k - 2];
     if (f.failed() || c.failed() || cc.failed() || !f.result.summary.converges_to_scene_theory) continue;
     Options opt;
     const std::optional<CoarserMesh> h = s.coarser_mesh(scene, f.mesh, opt);
@@ -107,22 +107,27 @@ std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, cons
     if (!h || !hh || h->mesh.counts != c.mesh.counts || hh->mesh.counts != cc.mesh.counts) continue;
     // The rung below, where it is the next coarsening again, checks the extrapolated values' order.
     const std::optional<CoarserMesh> hhh = s.coarser_mesh(scene, cc.mesh, opt);
-    const RunRecord* ccc = k >= 3 && hhh && hhh->mesh.counts == runs[k - 3].mesh.counts && !runs[k - 3].failed()
-                               ? &runs[k - 3]
-                               : nullptr;
+    const RunRecord* ccc =
+        k >= 3 && hhh && hhh->mesh.counts == runs[k - 3]->mesh.counts && !runs[k - 3]->failed() ? runs[k - 3] : nullptr;
     const ExtrapolationMesh fourth{ccc ? &ccc->result : nullptr, hhh ? hhh->ratio : kNaN};
     const Extrapolation x = richardson_extrapolate(f.result, {&c.result, h->ratio}, {&cc.result, hh->ratio}, h->order,
-                                                   h->next_order, kNaN, f.result.summary.diagnostic("frequency_solve_error_bound"),
+                                                   h->next_order, f.result.summary.diagnostic("frequency_solve_error_bound"),
                                                    ccc ? &fourth : nullptr);
     if (x.frequencies_rad_s.empty() && x.deflections.empty()) continue;
     RunRecord rec = f;
     rec.backend = s.name() + "+richardson";
     rec.result.extrapolated = x;
-    if (!x.frequencies_rad_s.empty()) rec.result.frequencies_rad_s = x.frequencies_rad_s;
-    if (!x.deflections.empty()) rec.result.deflections = x.deflections;
+    if (!x.frequencies_rad_s.empty()) {
+      rec.result.frequencies_rad_s = x.frequencies_rad_s;
+    } else {
+      rec.result.frequencies_rad_s.clear();
+      rec.result.mode_families.clear();
+      rec.result.mode_shapes = ModeShapes{};
+    }
+    rec.result.deflections = x.deflections;  // none where they were not extrapolated
     // No FRF is extrapolated: the record carries none, so its FRF is neither timed nor compared.
     rec.result.frf.clear();
-    rec.result.summary.method = "Richardson extrapolation of meshes " + x.meshes + " (" + x.note + ")";
+    rec.result.summary.method = x.note;
     rec.time_s = QuantityTimes{};
     rec.median_s = 0;
     for (Quantity q : {Quantity::Frequencies, Quantity::Deflections}) {
@@ -132,12 +137,6 @@ std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, cons
       (q == Quantity::Frequencies ? rec.time_s.modes : rec.time_s.statics) = t;
       if (std::isfinite(t)) rec.median_s += t;
     }
-    if (x.frequencies_rad_s.empty()) {
-      rec.result.frequencies_rad_s.clear();
-      rec.result.mode_families.clear();
-      rec.result.mode_shapes = ModeShapes{};
-    }
-    if (x.deflections.empty()) rec.result.deflections.clear();
     rec.spent_s = 0;
     out.push_back(std::move(rec));
   }
@@ -297,9 +296,9 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
                                        rec.repeats);
         c.runs.push_back(std::move(rec));
       }
-      std::vector<RunRecord> own;
+      std::vector<const RunRecord*> own;
       for (const auto& r : c.runs)
-        if (r.backend == s->name()) own.push_back(r);
+        if (r.backend == s->name()) own.push_back(&r);
       for (auto& rec : richardson_runs(*s, scene, own)) c.runs.push_back(std::move(rec));
     }
     for (const auto& extra : opt.extra_references)

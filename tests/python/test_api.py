@@ -109,16 +109,21 @@ def test_invalid_mesh_and_backend_raise_input_error():
         mb.solve(s, "rfem", mass="heavy")
 
 
-def test_shapes_and_frf_come_as_arrays():
-    d = {
-        "scene": {"name": "shapes", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
+def _steel_cantilever(name, request):
+    """A 1 m steel Euler-Bernoulli cantilever, 0.1 x 0.1 m, with the given request."""
+    return mb.Scene.from_dict({
+        "scene": {"name": name, "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
         "geometry": {"length": 1.0, "width": 0.1, "height": 0.1},
         "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
         "supports": {"x0": "clamped", "xL": "free"},
-        "request": {"modes": 3, "shapes": {"nx": 11},
-                    "frf": {"excite": 1.0, "observe": 1.0, "omega_min": 10.0, "omega_max": 1000.0, "points": 5}},
-    }
-    r = mb.solve(mb.Scene.from_dict(d), "exact")
+        "request": request,
+    })
+
+
+def test_shapes_and_frf_come_as_arrays():
+    r = mb.solve(_steel_cantilever("shapes", {
+        "modes": 3, "shapes": {"nx": 11},
+        "frf": {"excite": 1.0, "observe": 1.0, "omega_min": 10.0, "omega_max": 1000.0, "points": 5}}), "exact")
     assert r.ok, r.message
     w = r.shape("w")
     assert w.shape == (3, 11)
@@ -131,14 +136,7 @@ def test_shapes_and_frf_come_as_arrays():
 
 def test_extrapolated_frequencies_come_as_an_array_within_their_estimate():
     # A cantilever Euler-Bernoulli beam: exact frequencies (beta L)^2 sqrt(EI / (rho A L^4)).
-    d = {
-        "scene": {"name": "extrapolated", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
-        "geometry": {"length": 1.0, "width": 0.1, "height": 0.1},
-        "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
-        "supports": {"x0": "clamped", "xL": "free"},
-        "request": {"modes": 3},
-    }
-    r = mb.solve(mb.Scene.from_dict(d), "rfem", mesh="64")
+    r = mb.solve(_steel_cantilever("extrapolated", {"modes": 3}), "rfem", mesh="64")
     x = r.extrapolated_frequencies_rad_s
     assert x is not None and x.shape == (3,), r.extrapolation_note
     EI, rhoA = 2.1e11 * 0.1**4 / 12, 7850.0 * 0.01

@@ -15,12 +15,12 @@
 // With a fourth mesh 4H, R(2H) too: the order of R's own sequence is observed (and used where it
 // is below s), and the larger of that estimate and 1.25 times the one of R(H) carried to h is
 // reported (Roache's guard, as for the mesh's own estimate in result.hpp).
-// s is the back-end's (CoarserMesh::next_order); deflections use s = p unless stated (a point
-// load's h^2 log h term is not removed by extrapolation, and with s = p its estimate still covers
-// it), which makes their estimate a conservative one.
+// s is the back-end's (CoarserMesh::next_order); deflections use s = p (a point load's h^2 log h
+// term is not removed by extrapolation, and with s = p its estimate still covers it), which makes
+// their estimate a conservative one.
 //
 // Usage:
-//   Extrapolation x = richardson_extrapolate(fine, {coarse, r}, {coarser, r2}, p, s, s_defl, tolerance);
+//   Extrapolation x = richardson_extrapolate(fine, {&coarse, r}, {&coarser, r2}, p, s, solve_bound);
 //   if (!x.frequencies_rad_s.empty()) ... x.frequency_error ...
 
 #include <string>
@@ -28,6 +28,17 @@
 #include "modalbench/result.hpp"
 
 namespace modalbench {
+
+/// Roache's factors of safety, for the mesh's own estimate (result.hpp, ErrorEstimate) and the
+/// extrapolation's alike: 3 for an estimate whose order is assumed, not observed; 1.25 for the
+/// guard from the next coarser pair.
+inline constexpr double kRoacheSafetyFactor = 3.0, kRoacheGuardFactor = 1.25;
+
+/// The order p in [lo, hi] at which errors C h^p give the differences d1 = q(h) - q(H) and
+/// d2 = q(H) - q(2H) on the ratios r = H / h and r2 = 2H / H: d2 / d1 = r^p (r2^p - 1) / (r^p - 1),
+/// increasing in p; clamped to [lo, hi], NaN where d2 / d1 is not positive (the differences change
+/// sign).
+double observed_order(double d1, double d2, double r, double r2, double lo, double hi);
 
 /// One mesh of the extrapolation: its result and how much coarser it is than the next finer one.
 struct ExtrapolationMesh {
@@ -38,13 +49,12 @@ struct ExtrapolationMesh {
 /// Extrapolates `fine` (mesh h) with `coarse` (H) and `coarser` (2H): frequencies where every
 /// requested mode pairs (same family, index by index, none rigid on one mesh only), deflections
 /// where every probe is present on all three. What cannot be extrapolated is left empty and said in
-/// the note. `order` is p, `next_order` s for frequencies, `deflection_next_order` s for
-/// deflections; `solve_bound` the judged solve's own relative frequency bound (NaN: none).
+/// the note. `order` is p, `next_order` s for frequencies (deflections take s = p);
+/// `solve_bound` the judged solve's own relative frequency bound (NaN: none).
 /// `coarsest` (4H = r'' 2H, optional): R's own sequence R(h), R(H), R(2H) then shows its order (used
 /// where below s), and the estimate of R(H) carried to h guards the one of R(h) (times 1.25).
 Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh& coarse,
                                      const ExtrapolationMesh& coarser, double order, double next_order,
-                                     double deflection_next_order, double solve_bound,
-                                     const ExtrapolationMesh* coarsest = nullptr);
+                                     double solve_bound, const ExtrapolationMesh* coarsest = nullptr);
 
 }  // namespace modalbench

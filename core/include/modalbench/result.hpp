@@ -132,7 +132,7 @@ struct Extrapolation {
   std::string meshes;                     ///< the three meshes, fine to coarse ("64, 32, 16")
   double order = kNotMeasured;            ///< p: the order removed
   double next_order = kNotMeasured;       ///< s: the order assumed to remain (frequencies)
-  double deflection_next_order = kNotMeasured;  ///< s for deflections
+  double deflection_next_order = kNotMeasured;  ///< s for deflections: p (no gain assumed)
   std::string note;
   bool empty() const { return frequencies_rad_s.empty() && deflections.empty(); }
 };
