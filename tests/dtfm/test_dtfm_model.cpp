@@ -7,8 +7,10 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "modalbench/dtfm/prism_model.hpp"
+#include "modalbench/numerics/segment_dynamic_stiffness.hpp"
 #include "modalbench/rigid_kinematics.hpp"
 
 using namespace modalbench;
@@ -86,6 +88,26 @@ BOOST_AUTO_TEST_CASE(state_matrix_is_hamiltonian) {
     J.bottomLeftCorner(m.m, m.m) = -Eigen::MatrixXd::Identity(m.m, m.m);
     const Eigen::MatrixXd JA = J * A;
     BOOST_TEST((JA - JA.transpose()).norm() / JA.norm() < 1e-14);
+  }
+}
+
+// A uniform prism is the same read from either end: with the fields' parities P (w, v even;
+// slopes, axial displacement odd), R A R = -A for R = diag(P, -P). The segment solver finds P and
+// uses it (segment_dynamic_stiffness.hpp); here R A R + A is checked entry by entry.
+BOOST_AUTO_TEST_CASE(uniform_prisms_are_symmetric_end_for_end) {
+  std::vector<PrismModel> models;
+  models.push_back(build_model(beam_scene(Physics::Planar), Discretization::parse("2x2")));
+  models.push_back(build_model(beam_scene(Physics::Spatial), Discretization::parse("2x2")));
+  models.push_back(build_model(plate_scene(Theory::Kirchhoff), Discretization::parse("10")));
+  models.push_back(build_model(plate_scene(Theory::Mindlin), Discretization::parse("10")));
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    const Eigen::MatrixXd A = models[i].state_matrix(3.0e7);
+    const auto p = reflection_signs(A);
+    BOOST_TEST_REQUIRE(p.has_value(), "model " << i);
+    Eigen::VectorXd r(2 * models[i].m);
+    r << *p, -*p;
+    const Eigen::MatrixXd RAR = r.asDiagonal() * A * r.asDiagonal();
+    BOOST_TEST((RAR + A).cwiseAbs().maxCoeff() == 0.0, "model " << i);
   }
 }
 

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
 #include <stdexcept>
 
 #include "modalbench/numerics/balancing.hpp"
@@ -16,17 +19,84 @@ namespace modalbench {
 
 namespace {
 
+/// exp(B) for a B that anticommutes with R = diag(r), r_i = +-1 (R B R = -B: B maps R's +1
+/// fields to its -1 fields and back, its blocks within either are zero). Eigen's algorithm
+/// (Higham 2005: the [13/13] Pade approximant after s halvings, s from the 1-norm, then s
+/// squarings), with the structure used: the even powers of B are block diagonal in R's two
+/// halves, so B^2, B^4, B^6 and the Pade polynomials in them cost products of half the size
+/// (a quarter of the work), and U = B u(B^2) is block off-diagonal. The Pade quotient
+/// (V - U)^-1 (V + U) and the squarings are done on the whole matrix.
+template <class Mat>
+Mat exp_anticommuting(const Mat& B, const Eigen::VectorXd& r) {
+  const Eigen::Index n = B.rows();
+  std::vector<Eigen::Index> plus, minus;
+  for (Eigen::Index i = 0; i < n; ++i) (r[i] > 0 ? plus : minus).push_back(i);
+  const Eigen::Index a = static_cast<Eigen::Index>(plus.size()), b = static_cast<Eigen::Index>(minus.size());
+  const double l1 = B.cwiseAbs().colwise().sum().maxCoeff();
+  int squarings = 0;
+  constexpr double kMaxNorm = 5.371920351148152;  // theta_13 (Higham 2005)
+  if (l1 > kMaxNorm) std::frexp(l1 / kMaxNorm, &squarings);
+  const double down = std::ldexp(1.0, -squarings);
+  const Mat Bpm = B(plus, minus) * down, Bmp = B(minus, plus) * down;  // +1 <- -1 and -1 <- +1
+  static constexpr double c[] = {64764752532480000., 32382376266240000., 7771770303897600., 1187353796428800.,
+                                 129060195264000.,   10559470521600.,    670442572800.,     33522128640.,
+                                 1323241920.,        40840800.,          960960.,           16380.,
+                                 182.,               1.};
+  // u(X) and v(X), X = B^2 restricted to one half: U = B u(B^2), V = v(B^2) (Eigen's pade13).
+  auto polys = [&](const Mat& X2, Mat& u, Mat& v) {
+    const Eigen::Index k = X2.rows();
+    const Mat I = Mat::Identity(k, k);
+    const Mat X4 = X2 * X2, X6 = X4 * X2;
+    u.noalias() = X6 * Mat(c[13] * X6 + c[11] * X4 + c[9] * X2);
+    u += c[7] * X6 + c[5] * X4 + c[3] * X2 + c[1] * I;
+    v.noalias() = X6 * Mat(c[12] * X6 + c[10] * X4 + c[8] * X2);
+    v += c[6] * X6 + c[4] * X4 + c[2] * X2 + c[0] * I;
+  };
+  Mat up, vp, um, vm;
+  polys(Mat(Bpm * Bmp), up, vp);
+  polys(Mat(Bmp * Bpm), um, vm);
+  Mat num = Mat::Zero(n, n);  // in the order [plus; minus]
+  Mat den = Mat::Zero(n, n);
+  num.topLeftCorner(a, a) = vp;
+  num.bottomRightCorner(b, b) = vm;
+  num.topRightCorner(a, b).noalias() = Bpm * um;
+  num.bottomLeftCorner(b, a).noalias() = Bmp * up;
+  den.topLeftCorner(a, a) = vp;
+  den.bottomRightCorner(b, b) = vm;
+  den.topRightCorner(a, b) = -num.topRightCorner(a, b);
+  den.bottomLeftCorner(b, a) = -num.bottomLeftCorner(b, a);
+  Mat E = den.partialPivLu().solve(num);
+  for (int i = 0; i < squarings; ++i) E = (E * E).eval();
+  std::vector<Eigen::Index> order(plus);
+  order.insert(order.end(), minus.begin(), minus.end());
+  Mat T(n, n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i < n; ++i) T(order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>(j)]) = E(i, j);
+  return T;
+}
+
 // exp() is accurate relative to the norm of its argument; the state matrices mix entries
 // of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
-// of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1.
+// of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1. With the
+// segment's reflection signs p (reflection_signs), B anticommutes with diag(p, -p) and the
+// exponential takes the structured way (exp_anticommuting).
 template <class Mat>
-Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_det_tdf) {
+Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_det_tdf,
+                     const Eigen::VectorXd* p = nullptr) {
   const Eigen::Index n2 = A.rows();
   if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
   const Eigen::Index m = n2 / 2;
   Mat B = A * h;
   const Eigen::VectorXd scale = balance_in_place(B, 20);
-  const Mat T = scale.asDiagonal() * Mat(B.exp()) * scale.cwiseInverse().asDiagonal();
+  Mat E;
+  if (p) {
+    Eigen::VectorXd r(n2);
+    r << *p, -*p;
+    E = exp_anticommuting(B, r);
+  } else {
+    E = B.exp();
+  }
+  const Mat T = scale.asDiagonal() * E * scale.cwiseInverse().asDiagonal();
   const auto Tdd = T.topLeftCorner(m, m), Tdf = T.topRightCorner(m, m);
   const auto Tfd = T.bottomLeftCorner(m, m), Tff = T.bottomRightCorner(m, m);
   Eigen::PartialPivLU<Mat> lu(Tdf);
@@ -70,7 +140,91 @@ void double_in_place(Mat& K, const Solver& solve, Eigen::Index m, Mat& rhs, Mat&
   K = 0.5 * (out + out.transpose());
 }
 
+/// K's blocks made exactly what the reflection requires (K22 = P K11 P, K21 = K12^T = P K12 P),
+/// each from the mean of the two copies it has.
+template <class Mat>
+void impose_reflection(Mat& K, const Eigen::VectorXd& p) {
+  using Scalar = typename Mat::Scalar;
+  const Eigen::Index m = p.size();
+  const Mat PP = (p * p.transpose()).template cast<Scalar>();
+  const Mat K11 = (0.5 * (K.topLeftCorner(m, m).array() + PP.array() * K.bottomRightCorner(m, m).array())).matrix();
+  const Mat K12 = (0.5 * (K.topRightCorner(m, m).array() + PP.array() * K.bottomLeftCorner(m, m).array())).matrix();
+  K.topLeftCorner(m, m) = 0.5 * (K11 + K11.transpose());
+  K.topRightCorner(m, m) = 0.5 * (K12 + (PP.array() * K12.transpose().array()).matrix());
+  K.bottomRightCorner(m, m) = (PP.array() * K.topLeftCorner(m, m).array()).matrix();
+  K.bottomLeftCorner(m, m) = K.topRightCorner(m, m).transpose();
+}
+
+/// One doubling step of a segment symmetric under reflection (impose_reflection's form): the two
+/// copies' middle block S = K11 + P K11 P commutes with P, so S^-1 K12 = P (S^-1 K21) P and the
+/// joined segment's far-end blocks follow from its near-end ones. Half the solves and half the
+/// products of double_in_place.
+template <class Mat, class Solver>
+void double_reflected(Mat& K, const Solver& solve, const Eigen::VectorXd& p) {
+  using Scalar = typename Mat::Scalar;
+  const Eigen::Index m = p.size();
+  const Mat PP = (p * p.transpose()).template cast<Scalar>();
+  const Mat Y = solve(Mat(K.bottomLeftCorner(m, m)));  // S^-1 K21
+  Mat n11 = K.topLeftCorner(m, m);
+  n11.noalias() -= K.topRightCorner(m, m) * Y;
+  const Mat PYP = (PP.array() * Y.array()).matrix();
+  Mat n12;
+  n12.noalias() = -K.topRightCorner(m, m) * PYP;
+  K.topLeftCorner(m, m) = 0.5 * (n11 + n11.transpose());
+  K.topRightCorner(m, m) = 0.5 * (n12 + (PP.array() * n12.transpose().array()).matrix());
+  K.bottomRightCorner(m, m) = (PP.array() * K.topLeftCorner(m, m).array()).matrix();
+  K.bottomLeftCorner(m, m) = K.topRightCorner(m, m).transpose();
+}
+
+
+template <class Mat>
+std::optional<Eigen::VectorXd> reflection_signs_impl(const Mat& A) {
+  const Eigen::Index n2 = A.rows();
+  if (A.cols() != n2 || n2 % 2 != 0 || n2 == 0) return std::nullopt;
+  const Eigen::Index m = n2 / 2;
+  // Fields i, j whose coupling requires p_i p_j = s: a graph with signed edges, two-coloured by
+  // a search; a coupling that contradicts the colouring (or a diagonal entry of A11) rules the
+  // reflection out.
+  std::vector<std::vector<std::pair<Eigen::Index, int>>> adj(static_cast<std::size_t>(m));
+  auto relate = [&](Eigen::Index i, Eigen::Index j, int sign) {
+    adj[static_cast<std::size_t>(i)].emplace_back(j, sign);
+    adj[static_cast<std::size_t>(j)].emplace_back(i, sign);
+  };
+  for (Eigen::Index j = 0; j < m; ++j)
+    for (Eigen::Index i = 0; i < m; ++i) {
+      if (A(i, j) != 0.0 || A(m + j, m + i) != 0.0) relate(i, j, -1);
+      if (A(i, m + j) != 0.0 || A(m + i, j) != 0.0) relate(i, j, +1);
+    }
+  std::vector<int> sign(static_cast<std::size_t>(m), 0);
+  std::vector<Eigen::Index> stack;
+  for (Eigen::Index r = 0; r < m; ++r) {
+    if (sign[static_cast<std::size_t>(r)] != 0) continue;
+    sign[static_cast<std::size_t>(r)] = 1;
+    stack.push_back(r);
+    while (!stack.empty()) {
+      const Eigen::Index i = stack.back();
+      stack.pop_back();
+      for (const auto& [j, s] : adj[static_cast<std::size_t>(i)]) {
+        const int want = s * sign[static_cast<std::size_t>(i)];
+        int& sj = sign[static_cast<std::size_t>(j)];
+        if (sj == 0) {
+          sj = want;
+          stack.push_back(j);
+        } else if (sj != want) {
+          return std::nullopt;
+        }
+      }
+    }
+  }
+  Eigen::VectorXd p(m);
+  for (Eigen::Index i = 0; i < m; ++i) p[i] = sign[static_cast<std::size_t>(i)];
+  return p;
+}
+
 }  // namespace
+
+std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXd& A) { return reflection_signs_impl(A); }
+std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXcd& A) { return reflection_signs_impl(A); }
 
 Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry,
                                           double* log_abs_det_tdf) {
@@ -135,11 +289,13 @@ SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda
   return out;
 }
 
-LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels) {
+LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels, EndReflection reflection) {
   if (levels < 0) throw std::invalid_argument("long_segment_dynamic_stiffness: levels must be >= 0");
   LongSegment out;
-  out.K = segment_dynamic_stiffness(A, std::ldexp(h, -levels), &out.asymmetry, &out.log_abs_det_tdf);
+  const std::optional<Eigen::VectorXd> p = reflection == EndReflection::Use ? reflection_signs(A) : std::nullopt;
+  out.K = segment_dsm_impl(A, std::ldexp(h, -levels), &out.asymmetry, &out.log_abs_det_tdf, p ? &*p : nullptr);
   const Eigen::Index m = out.K.rows() / 2;
+  if (p) impose_reflection(out.K, *p);
   Eigen::MatrixXd rhs, X;
   for (int level = 0; level < levels; ++level) {
     const SymFactor f(Eigen::MatrixXd(out.K.bottomRightCorner(m, m) + out.K.topLeftCorner(m, m)));
@@ -151,16 +307,20 @@ LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, i
     out.clamped_below = 2 * out.clamped_below + f.negative;
     out.log_abs_det_tdf = 2 * out.log_abs_det_tdf + f.log_abs;
     if (f.max_abs > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, f.min_abs / f.max_abs);
-    double_in_place(out.K, [&](const Eigen::MatrixXd& B) { return f.solve(B); }, m, rhs, X);
+    auto solve = [&](const Eigen::MatrixXd& B) { return f.solve(B); };
+    if (p) double_reflected(out.K, solve, *p);
+    else double_in_place(out.K, solve, m, rhs, X);
   }
   return out;
 }
 
-LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels) {
+LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels, EndReflection reflection) {
   if (levels < 0) throw std::invalid_argument("long_segment_dynamic_stiffness: levels must be >= 0");
   LongSegmentC out;
-  out.K = segment_dynamic_stiffness(A, std::ldexp(h, -levels), &out.asymmetry);
+  const std::optional<Eigen::VectorXd> p = reflection == EndReflection::Use ? reflection_signs(A) : std::nullopt;
+  out.K = segment_dsm_impl(A, std::ldexp(h, -levels), &out.asymmetry, nullptr, p ? &*p : nullptr);
   const Eigen::Index m = out.K.rows() / 2;
+  if (p) impose_reflection(out.K, *p);
   Eigen::MatrixXcd rhs, X;
   for (int level = 0; level < levels; ++level) {
     const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(Eigen::MatrixXcd(out.K.bottomRightCorner(m, m) + out.K.topLeftCorner(m, m)));
@@ -173,7 +333,9 @@ LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h,
       hi = std::max(hi, a);
     }
     if (hi > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, lo / hi);
-    double_in_place(out.K, [&](const Eigen::MatrixXcd& B) { return Eigen::MatrixXcd(lu.solve(B)); }, m, rhs, X);
+    auto solve = [&](const Eigen::MatrixXcd& B) { return Eigen::MatrixXcd(lu.solve(B)); };
+    if (p) double_reflected(out.K, solve, *p);
+    else double_in_place(out.K, solve, m, rhs, X);
   }
   return out;
 }

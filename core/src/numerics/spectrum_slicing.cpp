@@ -82,6 +82,7 @@ struct Bracket {
 double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, double rel_tol, double abs_tol,
                        double& floor_width) {
   const int n = iv.a.count;
+  int probes = 0;  // counts placed just across a stalled estimate
   auto tol_of = [&](double lo, double hi) { return std::max(rel_tol * std::max(std::abs(lo), std::abs(hi)), abs_tol); };
   // Every evaluation narrows the bracket by its count, whatever the determinant says.
   auto record = [&](double lam, const CountDet& cd) {
@@ -123,9 +124,25 @@ double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, dou
       if (root.converged) return estimate;
       // Stopped: accepted only where the count confirms the estimate to the rounding floor of a
       // well-resolved root (the bracket the counts leave is itself that narrow, and is its bound).
-      if (iv.hi - iv.lo <= kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi))) {
+      auto floor_reached = [&] { return iv.hi - iv.lo <= kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi)); };
+      if (floor_reached()) {
         floor_width = std::max(floor_width, (iv.hi - iv.lo) / std::max(std::abs(iv.lo), std::abs(iv.hi)));
         return estimate;
+      }
+      // The determinant stopped next to one end of a wide bracket (a root of a 40-strip plate sat
+      // 1e-12 below the end it came from, the other end 2e-3 away): one count just across the
+      // estimate, on the wide side, usually confirms it; bisecting from the far end took 17.
+      if (probes < 2) {
+        ++probes;
+        const double w = 0.5 * kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi));
+        const double probe = estimate - iv.lo > iv.hi - estimate ? estimate - w : estimate + w;
+        if (probe > iv.lo && probe < iv.hi) {
+          record(probe, E(probe));
+          if (floor_reached()) {
+            floor_width = std::max(floor_width, (iv.hi - iv.lo) / std::max(std::abs(iv.lo), std::abs(iv.hi)));
+            return std::clamp(estimate, iv.lo, iv.hi);
+          }
+        }
       }
     }
     // Otherwise one bisection on the count, then Brent again on the half that holds the root.

@@ -13,6 +13,7 @@
 // doubling (long_segment_dynamic_stiffness).
 
 #include <Eigen/Dense>
+#include <optional>
 
 namespace modalbench {
 
@@ -47,6 +48,18 @@ SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda
 /// nodes' negative pivots give the Wittrick-Williams J0 of the long segment (its clamped-clamped
 /// natural frequencies below lambda; the base piece must have none: |p| h_base small), and
 /// log |det Tdf| follows from |det Tdf(2h)| = |det Tdf(h)|^2 |det S|.
+/// The reflection of a uniform segment end for end (x -> h - x): signs p_i = +-1, one per field,
+/// with R A R = -A for R = diag(P, -P), P = diag(p), i.e. P A11 P = -A11, P A12 P = A12,
+/// P A21 P = A21 exactly (a pattern of zeros: which fields are even and which odd in x). Then
+/// K22 = P K11 P and K21 = K12^T = P K12 P, and a doubling needs half the work. nullopt when the
+/// couplings allow no such signs (a field coupled to its own derivative, an odd cycle).
+std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXd& A);
+std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXcd& A);
+
+/// Whether long_segment_dynamic_stiffness may use the reflection (Use: where reflection_signs
+/// finds one; Ignore: the general doubling always, a second way to the same matrix).
+enum class EndReflection { Use, Ignore };
+
 struct LongSegment {
   Eigen::MatrixXd K;
   int clamped_below = 0;       ///< J0 of the segment
@@ -54,7 +67,8 @@ struct LongSegment {
   double asymmetry = 0;        ///< of the base piece (see segment_dynamic_stiffness)
   double min_pivot_rel = 1;    ///< smallest |eigenvalue| / norm of the condensed middle blocks
 };
-LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels);
+LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels,
+                                           EndReflection reflection = EndReflection::Use);
 
 // ---- Complex path: damped harmonic response (structural damping, lambda = omega^2 / (1 + i eta)).
 
@@ -68,6 +82,7 @@ struct LongSegmentC {
   double asymmetry = 0;
   double min_pivot_rel = 1;  ///< smallest reciprocal condition estimate of the middle blocks
 };
-LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels);
+LongSegmentC long_segment_dynamic_stiffness(const Eigen::MatrixXcd& A, double h, int levels,
+                                            EndReflection reflection = EndReflection::Use);
 
 }  // namespace modalbench
