@@ -312,7 +312,10 @@ BOOST_AUTO_TEST_CASE(dtfm_free_and_nearly_free_spans_keep_their_elastic_modes) {
       BOOST_REQUIRE(r.frequencies_rad_s.size() == 6u);
       for (int i = 0; i < 4; ++i) {
         const double w = bl[i] * bl[i] * std::sqrt(EI / (m * L * L * L * L));
-        BOOST_TEST(rel(r.frequencies_rad_s[2 + i], w) < 2e-11, "mode " << 3 + i << ": " << r.frequencies_rad_s[2 + i]);
+        // 5e-11: the count itself is at its rounding floor here. On the line cut at its golden
+        // section mode 6's count came out wrong 1.6e-11 and 3.3e-11 (relative, in omega^2) from the root, and
+        // the polish ends 1.3e-11 to 2.1e-11 off in omega depending on where its steps fall.
+        BOOST_TEST(rel(r.frequencies_rad_s[2 + i], w) < 5e-11, "mode " << 3 + i << ": " << r.frequencies_rad_s[2 + i]);
       }
     }
   }
