@@ -1,13 +1,12 @@
 // LineAnalysis meshes: global nodes and base-piece length from the wavenumber bounds of a class line.
 #include "modalbench/dtfm/analysis.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "analysis_detail.hpp"
-#include "modalbench/numerics/balancing.hpp"
+#include "modalbench/numerics/segment_dynamic_stiffness.hpp"
 
 namespace modalbench::dtfm {
 
@@ -29,13 +28,13 @@ double fgcd(double a, double b, double tol) {
 namespace {
 
 void wavenumber_bounds(const Eigen::MatrixXd& A, double& re, double& im) {
-  Eigen::EigenSolver<Eigen::MatrixXd> es(balanced(A), false);
-  if (es.info() == Eigen::Success) {
-    for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
-      re = std::max(re, std::abs(es.eigenvalues()[i].real()));
-      im = std::max(im, std::abs(es.eigenvalues()[i].imag()));
+  try {
+    const Eigen::VectorXcd p = state_wavenumbers(A);
+    for (Eigen::Index i = 0; i < p.size(); ++i) {
+      re = std::max(re, std::abs(p[i].real()));
+      im = std::max(im, std::abs(p[i].imag()));
     }
-  } else {  // |p| <= any induced norm of A
+  } catch (const std::runtime_error&) {  // |p| <= any induced norm of A
     const double nrm = A.cwiseAbs().rowwise().sum().maxCoeff();
     re = std::max(re, nrm);
     im = std::max(im, nrm);

@@ -504,8 +504,10 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     out.family.push_back(share >= ctl_.family_threshold ? line.family : ModeFamily::Unknown);
   }
   // Reproducibility: each mode's class is counted just below and above it (lambda (1 -+ tau))
-  // on a second discretization: each segment cut at its golden section, base pieces within the
-  // same bounds (other J0, other pivots, other rounding, the same accuracy). A mode whose count
+  // on a second discretization: each segment cut in three equal pieces, base pieces within the
+  // same bounds (other J0, other pivots, other rounding, the same accuracy; 2/3 of the first's
+  // length, not a power of two of it). Equal pieces share one long-segment matrix: the golden
+  // section used before gave two of different lengths, twice the work. A mode whose count
   // does not come out as expected is below the model's rounding floor (stiff layers or very
   // slender spans against soft supports). Base pieces longer or shorter than the bounds would
   // test a worse discretization instead: twice the evanescent bound loses digits in exp(A h), half
@@ -515,7 +517,9 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     Mesh a = m;
     a.x = {m.x.front()};
     for (std::size_t i = 0; i + 1 < m.x.size(); ++i) {
-      a.x.push_back(m.x[i] + kGoldenCut * (m.x[i + 1] - m.x[i]));
+      const double d = m.x[i + 1] - m.x[i];
+      a.x.push_back(m.x[i] + d / 3.0);
+      a.x.push_back(m.x[i] + 2.0 * d / 3.0);
       a.x.push_back(m.x[i + 1]);
     }
     return a;

@@ -1,5 +1,6 @@
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
@@ -26,11 +27,24 @@ namespace {
 /// halves, so B^2, B^4, B^6 and the Pade polynomials in them cost products of half the size
 /// (a quarter of the work), and U = B u(B^2) is block off-diagonal. The Pade quotient
 /// (V - U)^-1 (V + U) and the squarings are done on the whole matrix.
+/// The fields of R's +1 and -1 halves (r_i = +-1), each in order.
+std::pair<std::vector<Eigen::Index>, std::vector<Eigen::Index>> halves_of(const Eigen::VectorXd& r) {
+  std::pair<std::vector<Eigen::Index>, std::vector<Eigen::Index>> h;
+  for (Eigen::Index i = 0; i < r.size(); ++i) (r[i] > 0 ? h.first : h.second).push_back(i);
+  return h;
+}
+
+/// diag(p, -p): R of a state with field parities p.
+Eigen::VectorXd state_signs(const Eigen::VectorXd& p) {
+  Eigen::VectorXd r(2 * p.size());
+  r << p, -p;
+  return r;
+}
+
 template <class Mat>
 Mat exp_anticommuting(const Mat& B, const Eigen::VectorXd& r) {
   const Eigen::Index n = B.rows();
-  std::vector<Eigen::Index> plus, minus;
-  for (Eigen::Index i = 0; i < n; ++i) (r[i] > 0 ? plus : minus).push_back(i);
+  const auto [plus, minus] = halves_of(r);
   const Eigen::Index a = static_cast<Eigen::Index>(plus.size()), b = static_cast<Eigen::Index>(minus.size());
   const double l1 = B.cwiseAbs().colwise().sum().maxCoeff();
   int squarings = 0;
@@ -90,9 +104,7 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
   const Eigen::VectorXd scale = balance_in_place(B, 20);
   Mat E;
   if (p) {
-    Eigen::VectorXd r(n2);
-    r << *p, -*p;
-    E = exp_anticommuting(B, r);
+    E = exp_anticommuting(B, state_signs(*p));
   } else {
     E = B.exp();
   }
@@ -224,6 +236,28 @@ std::optional<Eigen::VectorXd> reflection_signs_impl(const Mat& A) {
 }  // namespace
 
 std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXd& A) { return reflection_signs_impl(A); }
+
+Eigen::VectorXcd state_wavenumbers(const Eigen::MatrixXd& A) {
+  const Eigen::MatrixXd B = balanced(A);
+  const std::optional<Eigen::VectorXd> p = reflection_signs(B);
+  if (!p) {
+    Eigen::EigenSolver<Eigen::MatrixXd> es(B, false);
+    if (es.info() != Eigen::Success) throw std::runtime_error("state_wavenumbers: the eigenvalue iteration did not converge");
+    return es.eigenvalues();
+  }
+  // B^2 = diag(Bpm Bmp, Bmp Bpm): its eigenvalues p^2 from the first block, each pair +-p once.
+  const auto [plus, minus] = halves_of(state_signs(*p));
+  const Eigen::MatrixXd X = B(plus, minus) * B(minus, plus);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(X, false);
+  if (es.info() != Eigen::Success) throw std::runtime_error("state_wavenumbers: the eigenvalue iteration did not converge");
+  const Eigen::Index k = X.rows();
+  Eigen::VectorXcd out(2 * k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    out[i] = std::sqrt(es.eigenvalues()[i]);
+    out[k + i] = -out[i];
+  }
+  return out;
+}
 std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXcd& A) { return reflection_signs_impl(A); }
 
 Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry,

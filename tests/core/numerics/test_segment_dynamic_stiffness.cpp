@@ -3,7 +3,9 @@
 #define BOOST_TEST_MODULE segment_dynamic_stiffness
 #include <boost/test/unit_test.hpp>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <complex>
 #include <numbers>
@@ -126,6 +128,26 @@ BOOST_AUTO_TEST_CASE(complex_doubling_matches_the_closed_form_bar) {
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(reflection)
+
+// The wavenumbers from the half-size block of A^2 against the eigenvalues of the whole state
+// (Eigen's EigenSolver): the same set, each +-p pair, to rounding of the largest.
+BOOST_AUTO_TEST_CASE(wavenumbers_from_the_half_size_block) {
+  Eigen::VectorXd p(9);
+  p << 1, -1, -1, 1, 1, -1, 1, 1, -1;
+  for (double lambda : {0.5, 40.0}) {
+    const Eigen::MatrixXd A = reflected_state(p, lambda, 11);
+    const Eigen::VectorXcd got = state_wavenumbers(A);
+    const Eigen::VectorXcd ref = Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues();
+    BOOST_REQUIRE(got.size() == ref.size());
+    const double scale = ref.cwiseAbs().maxCoeff();
+    for (Eigen::Index i = 0; i < ref.size(); ++i) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (Eigen::Index j = 0; j < got.size(); ++j) nearest = std::min(nearest, std::abs(got[j] - ref[i]));
+      BOOST_TEST(nearest < 1e-10 * scale, "lambda " << lambda << ", wavenumber " << ref[i]);
+    }
+  }
+}
+
 
 // An Euler-Bernoulli span's fields: w is even end for end, w' odd. A field coupled to its own
 // derivative (A11 diagonal) has no such parity.

@@ -56,6 +56,11 @@ SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda
 std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXd& A);
 std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXcd& A);
 
+/// The wavenumbers of a real state matrix (its eigenvalues, +-p pairs), after balancing. With
+/// reflection signs, from the half-size block of A^2 (A^2 is block diagonal in R's halves): an
+/// eigenvalue problem of m instead of 2m. Throws std::runtime_error if the iteration fails.
+Eigen::VectorXcd state_wavenumbers(const Eigen::MatrixXd& A);
+
 /// Whether long_segment_dynamic_stiffness may use the reflection (Use: where reflection_signs
 /// finds one; Ignore: the general doubling always, a second way to the same matrix).
 enum class EndReflection { Use, Ignore };
