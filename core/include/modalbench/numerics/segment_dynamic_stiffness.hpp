@@ -62,7 +62,8 @@ std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXcd& A);
 Eigen::VectorXcd state_wavenumbers(const Eigen::MatrixXd& A);
 
 /// Whether long_segment_dynamic_stiffness may use the reflection (Use: where reflection_signs
-/// finds one; Ignore: the general doubling always, a second way to the same matrix).
+/// finds one and the state has 8 fields or more, below which the general way is faster;
+/// Ignore: the general way always, a second way to the same matrix).
 enum class EndReflection { Use, Ignore };
 
 struct LongSegment {
