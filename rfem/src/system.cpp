@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -352,6 +353,19 @@ void add_coupling_deformation(const Model& m, const std::vector<Eigen::VectorXd>
 }
 }  // namespace
 
+namespace {
+/// Below this an eigenvalue of a deformation Gram matrix (AtA over candidate rigid motions) is
+/// null to rounding. The measure is geometric (every component's rows count alike, normalized to
+/// a unit motion), so a motion that deforms anything scores of order one, and one that deforms
+/// nothing scores the eigensolver's rounding: eps times the largest eigenvalue, or one. An
+/// absolute 1e-9 on the square root (1e-18 on the eigenvalue) was below that rounding: a beam on
+/// one soft spring lost its rigid rotation at 5.2e-18 once the products were compiled with FMA.
+double deformation_null_floor(const Eigen::VectorXd& eigenvalues) {
+  return 64.0 * static_cast<double>(eigenvalues.size()) * std::numeric_limits<double>::epsilon() *
+         std::max(eigenvalues.cwiseAbs().maxCoeff(), 1.0);
+}
+}  // namespace
+
 RigidModes free_rigid_modes(const Model& m, const System& sys) {
   const double L = m.length_scale;
   const long nq = m.body_dofs();
@@ -381,8 +395,9 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
   if (es.info() != Eigen::Success)
     throw std::runtime_error("rfem: the eigensolver of the rigid-motion test failed (no convergence)");
   std::vector<long> null_cols;
+  const double floor = deformation_null_floor(es.eigenvalues());
   for (long i = 0; i < nc; ++i)
-    if (std::sqrt(std::max(0.0, es.eigenvalues()[i])) <= 1e-9) null_cols.push_back(i);
+    if (es.eigenvalues()[i] <= floor) null_cols.push_back(i);
   if (null_cols.empty()) return out;
 
   Eigen::MatrixXd Cq(nq, nc);
@@ -455,8 +470,9 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
   Eigen::SimplicialLDLT<SpMat> ldlt(TtT);
   if (ldlt.info() != Eigen::Success) return out;
   std::vector<Eigen::VectorXd> zs, coef;
+  const double floor = deformation_null_floor(es.eigenvalues());
   for (long i = 0; i < nc; ++i) {
-    if (!(std::sqrt(std::max(0.0, es.eigenvalues()[i])) <= 1e-9)) continue;
+    if (!(es.eigenvalues()[i] <= floor)) continue;
     const Eigen::VectorXd nv = es.eigenvectors().col(i);
     Eigen::VectorXd q = Eigen::VectorXd::Zero(cand[0].size());
     for (long j = 0; j < nc; ++j) q += nv[j] * cand[static_cast<std::size_t>(j)];
@@ -489,8 +505,9 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ws(W);
     if (ws.info() != Eigen::Success) return out;
     std::vector<long> held;
+    const double held_floor = deformation_null_floor(ws.eigenvalues());
     for (long i = 0; i < r; ++i)
-      if (std::sqrt(std::max(0.0, ws.eigenvalues()[i])) > 1e-9) held.push_back(i);
+      if (ws.eigenvalues()[i] > held_floor) held.push_back(i);
     if (held.empty()) return out;
     Eigen::MatrixXd E(r, static_cast<long>(held.size()));
     for (std::size_t i = 0; i < held.size(); ++i) E.col(static_cast<long>(i)) = ws.eigenvectors().col(held[i]);
