@@ -59,7 +59,7 @@ AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, const Mat& 
     for (const auto& e : cache)
       if (std::abs(h - e.first) <= 1e-9 * h) hit = &e.second;
     if (!hit) {
-      const int levels = std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+      const int levels = detail::doubling_levels(h, h_base);
       cache.emplace_back(h, long_segment(A, h, levels));
       hit = &cache.back().second;
       max_asym = std::isfinite(hit->asymmetry) ? std::max(max_asym, hit->asymmetry) : kInf;

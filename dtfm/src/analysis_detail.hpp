@@ -2,6 +2,8 @@
 // Internal to the dtfm line analysis: a symmetry class as a scaled line problem, the assembled system.
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -41,6 +43,13 @@ struct LineAnalysis::ClassLine {
 };
 
 namespace detail {
+
+/// How many times a segment of length h is halved down to base pieces no longer than h_base
+/// (long_segment_dynamic_stiffness' levels): the discretization a mesh gives that segment.
+inline int doubling_levels(double h, double h_base) {
+  return std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+}
+
 
 struct AssemblyInfo {
   int clamped_below = 0;   // sum of the segments' J0

@@ -404,20 +404,45 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   // one, whose K(lambda) keeps lambda only to eps / (lambda m h^4 / EI) (mode 1 of a 1000-mode
   // slicing was 9.5e-4 off). Adjacent bands' counts at their common end must agree.
   constexpr double kBand = 16.0;
+  // Whether two meshes discretize alike: the same nodes, every segment halved as often.
+  auto same_pieces = [](const Mesh& a, const Mesh& b) {
+    if (a.x != b.x) return false;
+    for (std::size_t i = 0; i + 1 < a.x.size(); ++i) {
+      const double h = a.x[i + 1] - a.x[i];
+      if (detail::doubling_levels(h, a.h_base) != detail::doubling_levels(h, b.h_base)) return false;
+    }
+    return true;
+  };
   std::vector<std::vector<Band>> bands(lines_.size());
   if (rigid < k) {
-    for (int c : cls) {
+    // Each class banded and sliced on its own (side by side), its findings merged in class order
+    // after.
+    struct Sliced {
+      SliceStats st;
+      std::vector<double> vals;
+      std::vector<const Band*> band_of;
+      ModeList notes;  // count_consistent, count_message of the class's bands and re-polish
+    };
+    std::vector<Sliced> sliced(cls.size());
+    side_by_side(cls.size(), [&](std::size_t i) {
+      const int c = cls[i];
+      Sliced& sl = sliced[i];
       auto& bc = bands[c];
-      double top = hi;
+      double top = hi, bot = hi;
       Mesh m = mesh[c];
       for (;;) {
-        const double bot = top / kBand;
+        const double next = bot / kBand;
         Mesh mb;
-        if (bot > near[c].lo) mb = mesh_for(*lines_[c], bot, {});
-        if (!(bot > near[c].lo) || !(mb.h_base > m.h_base)) {
+        if (next > near[c].lo) mb = mesh_for(*lines_[c], next, {});
+        if (!(next > near[c].lo) || !(mb.h_base > m.h_base)) {
           bc.push_back({near[c].lo, top, m});
           break;
         }
+        bot = next;
+        // A mesh that cuts every segment into as many base pieces is the same discretization: the
+        // band goes on down (a 6x6 spatial beam's bound moved by 1e-4 relative per decade and
+        // gave ten bands of one discretization per class, each with its own counts).
+        if (same_pieces(mb, m)) continue;
         bc.push_back({bot, top, m});
         top = bot;
         m = mb;
@@ -427,23 +452,12 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
         const int below = count_det(*lines_[c], bc[b].hi, bc[b].mesh).count;
         const int above = count_det(*lines_[c], bc[b].hi, bc[b + 1].mesh).count;
         if (below != above) {
-          out.count_consistent = false;
-          out.count_message += fmt::format("{}the counts at {:.6g} rad/s on two meshes differ ({} and {})",
-                                           out.count_message.empty() ? "" : "; ", std::sqrt(bc[b].hi), below, above);
+          sl.notes.count_consistent = false;
+          sl.notes.count_message += fmt::format("{}the counts at {:.6g} rad/s on two meshes differ ({} and {})",
+                                                sl.notes.count_message.empty() ? "" : "; ", std::sqrt(bc[b].hi),
+                                                below, above);
         }
       }
-    }
-    // Each class sliced on its own (side by side), its findings merged in class order after.
-    struct Sliced {
-      SliceStats st;
-      std::vector<double> vals;
-      std::vector<const Band*> band_of;
-      ModeList notes;  // count_consistent, count_message of the class's re-polish
-    };
-    std::vector<Sliced> sliced(cls.size());
-    side_by_side(cls.size(), [&](std::size_t i) {
-      const int c = cls[i];
-      Sliced& sl = sliced[i];
       for (const Band& band : bands[c]) {
         auto v = slice_interval_polished([&](double lam) { return count_det(*lines_[c], lam, band.mesh); }, band.lo,
                                          band.hi, ctl_.rel_tol, 1e-14 * scale, &sl.st);
@@ -481,6 +495,15 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   std::stable_sort(all.begin(), all.end(), [](const Found& a, const Found& b) { return a.lambda < b.lambda; });
   if (static_cast<int>(all.size()) > k) all.resize(k);
   out.rigid = std::min(true_rigid, k);
+  // One prism cannot deform in its section: every mode of a class is of its family (the share's
+  // inverse iteration loses its digits next to springs of 1e12 EI / L^3 and mislabelled them).
+  // Otherwise each mode's share from its own inverse iteration, side by side.
+  const bool one_prism = model_.kind == SceneKind::Beam && model_.prisms.size() == 1;
+  std::vector<double> shares(all.size(), 1.0);
+  side_by_side(all.size(), [&](std::size_t i) {
+    if (static_cast<int>(i) < out.rigid || all[i].near || one_prism) return;
+    shares[i] = family_share(*lines_[all[i].cls], all[i].lambda);
+  });
   for (std::size_t i = 0; i < all.size(); ++i) {
     const auto& f = all[i];
     out.omega_rad_s.push_back(std::sqrt(std::max(f.lambda, 0.0)));
@@ -496,10 +519,7 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
       out.family_share.push_back(1.0);
       continue;
     }
-    // One prism cannot deform in its section: every mode of a class is of its family (the share's
-    // inverse iteration loses its digits next to springs of 1e12 EI / L^3 and mislabelled them).
-    const bool one_prism = model_.kind == SceneKind::Beam && model_.prisms.size() == 1;
-    const double share = one_prism ? 1.0 : family_share(line, f.lambda);
+    const double share = shares[i];
     out.family_share.push_back(share);
     out.family.push_back(share >= ctl_.family_threshold ? line.family : ModeFamily::Unknown);
   }

@@ -71,7 +71,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> near_node(const LineAnalysis::ClassLine
   if (a < 0 || a + 1 >= nn) return node_d(i);  // cannot happen: points lie in [0, L]
   const Mat A = c.state(lambda);
   const double h = x[static_cast<std::size_t>(a) + 1] - x[static_cast<std::size_t>(a)];
-  const int levels = std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+  const int levels = detail::doubling_levels(h, h_base);
   const Mat K = segment_k(A, h, levels).K;
   Vec dd(2 * mc), eta(2 * mc);
   dd << node_d(a), node_d(a + 1);

@@ -95,7 +95,7 @@ struct Gap {
 Gap make_gap(const Eigen::MatrixXd& A, double h, double h_base) {
   Gap g;
   g.h = h;
-  g.levels = std::max(0, static_cast<int>(std::ceil(std::log2(h / h_base) - 1e-9)));
+  g.levels = detail::doubling_levels(h, h_base);
   g.h_base = std::ldexp(h, -g.levels);
   for (int j = 0; j <= g.levels; ++j) {
     const LongSegment seg = long_segment_dynamic_stiffness(A, std::ldexp(h, -j), g.levels - j);
