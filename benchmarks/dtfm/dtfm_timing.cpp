@@ -3,6 +3,8 @@
 //   4-prism fixed beam, first 6 modes        target <= 5 ms
 //   10-strip plate, first 8 modes            target <= 50 ms
 //   FRF of 400 points on the 10-strip plate  target <= 100 ms
+//   40-strip plate, first 8 modes            target <= 150 ms (issue 14)
+//   spatial 6x6 beam, first 6 modes          target <= 200 ms (issue 14)
 // Sample run: build-dtfm/benchmarks/dtfm/bench_dtfm_timing
 #include <fmt/format.h>
 
@@ -80,6 +82,28 @@ int main() {
       },
       5);
   fmt::print("10-strip plate, FRF 400 points, damped:   {:8.2f} ms  (complex solves)\n", t_frf_d * 1e3);
+  const PrismModel plate40 = build_model(plate, Discretization::parse("40"));
+  long evals40 = 0;
+  const double t_plate40 = median_time(
+      [&] {
+        LineAnalysis la(plate40);
+        evals40 = la.modes(8).evaluations;
+      },
+      5);
+  fmt::print("40-strip plate, first 8 modes:            {:8.2f} ms  ({} count evaluations)  target <= 150 ms\n",
+             t_plate40 * 1e3, evals40);
+  Scene spatial6 = beam;
+  spatial6.physics = Physics::Spatial;
+  const PrismModel beam66 = build_model(spatial6, Discretization::parse("6x6"));
+  long evals66 = 0;
+  const double t_beam66 = median_time(
+      [&] {
+        LineAnalysis la(beam66);
+        evals66 = la.modes(6).evaluations;
+      },
+      5);
+  fmt::print("spatial 6x6 beam, first 6 modes:          {:8.2f} ms  ({} count evaluations)  target <= 200 ms\n",
+             t_beam66 * 1e3, evals66);
   const DtfmSolver solver;
   const double t_full = median_time([&] { solver.solve(plate, Discretization::parse("10"), {}); }, 5);
   fmt::print("10-strip plate, whole scene (8 modes, statics, FRF): {:8.2f} ms\n\n", t_full * 1e3);

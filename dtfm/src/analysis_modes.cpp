@@ -324,13 +324,18 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   rigid_shift_ = rigid_below;
   if (const int neg = total(-rigid_below); neg > 0)
     throw std::runtime_error(fmt::format("the prism model has {} negative eigenvalue(s) omega^2 < 0: unstable", neg));
+  // Each class's count below the threshold and the lowest eigenvalues of classes with rigid
+  // motions of their own, rigid (0) and near-rigid, side by side.
   std::vector<int> rigid_c(lines_.size(), 0);
-  int rigid = 0;
-  for (int c : cls) rigid += rigid_c[c] = count_det(*lines_[c], rigid_below, mesh[c]).count;
-  // The lowest eigenvalues of classes with rigid motions of their own: rigid (0) and near-rigid.
   std::vector<NearRigid> near(lines_.size());
-  for (int c : cls) {
+  side_by_side(cls.size(), [&](std::size_t i) {
+    const int c = cls[i];
+    rigid_c[c] = count_det(*lines_[c], rigid_below, mesh[c]).count;
     near[c] = near_rigid(*lines_[c], rigid_c[c]);
+  });
+  int rigid = 0;
+  for (int c : cls) {
+    rigid += rigid_c[c];
     if (rigid_below > delta) {  // a plate's (no rigid split of its own): its rigid modes lie below
       near[c].lo = rigid_below;
       near[c].below_lo = near[c].rigid = rigid_c[c];
