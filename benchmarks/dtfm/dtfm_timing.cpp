@@ -12,6 +12,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "modalbench/dtfm/dtfm.hpp"
@@ -82,28 +83,26 @@ int main() {
       },
       5);
   fmt::print("10-strip plate, FRF 400 points, damped:   {:8.2f} ms  (complex solves)\n", t_frf_d * 1e3);
-  const PrismModel plate40 = build_model(plate, Discretization::parse("40"));
-  long evals40 = 0;
-  const double t_plate40 = median_time(
-      [&] {
-        LineAnalysis la(plate40);
-        evals40 = la.modes(8).evaluations;
-      },
-      5);
-  fmt::print("40-strip plate, first 8 modes:            {:8.2f} ms  ({} count evaluations)  target <= 150 ms\n",
-             t_plate40 * 1e3, evals40);
-  Scene spatial6 = beam;
-  spatial6.physics = Physics::Spatial;
-  const PrismModel beam66 = build_model(spatial6, Discretization::parse("6x6"));
-  long evals66 = 0;
-  const double t_beam66 = median_time(
-      [&] {
-        LineAnalysis la(beam66);
-        evals66 = la.modes(6).evaluations;
-      },
-      5);
-  fmt::print("spatial 6x6 beam, first 6 modes:          {:8.2f} ms  ({} count evaluations)  target <= 200 ms\n",
-             t_beam66 * 1e3, evals66);
+  // The first k modes of a model (of the given families): median time over `repeats`, evaluations.
+  auto time_modes = [&](const PrismModel& m, int k, const std::vector<ModeFamily>& fam, int repeats) {
+    long ev = 0;
+    const double t = median_time(
+        [&] {
+          LineAnalysis la(m);
+          ev = la.modes(k, fam).evaluations;
+        },
+        repeats);
+    return std::pair<double, long>{t, ev};
+  };
+  // The two dtfm targets.
+  auto target_row = [&](const char* label, const PrismModel& m, int k, double target_ms) {
+    const auto [t, ev] = time_modes(m, k, {}, 5);
+    fmt::print("{:<42}{:8.2f} ms  ({} count evaluations)  target <= {:g} ms\n", label, t * 1e3, ev, target_ms);
+  };
+  target_row("40-strip plate, first 8 modes:", build_model(plate, Discretization::parse("40")), 8, 150);
+  Scene spatial = beam;
+  spatial.physics = Physics::Spatial;
+  target_row("spatial 6x6 beam, first 6 modes:", build_model(spatial, Discretization::parse("6x6")), 6, 200);
   const DtfmSolver solver;
   const double t_full = median_time([&] { solver.solve(plate, Discretization::parse("10"), {}); }, 5);
   fmt::print("10-strip plate, whole scene (8 modes, statics, FRF): {:8.2f} ms\n\n", t_full * 1e3);
@@ -112,44 +111,24 @@ int main() {
   fmt::print("  {:<28} {:>7} {:>10} {:>8}\n", "model", "fields", "time ms", "evals");
   auto row = [&](const std::string& label, const Scene& s, const char* mesh, int k, std::vector<ModeFamily> fam) {
     const PrismModel m = build_model(s, Discretization::parse(mesh));
-    long ev = 0;
-    const double t = median_time(
-        [&] {
-          LineAnalysis la(m);
-          ev = la.modes(k, fam).evaluations;
-        },
-        3);
+    const auto [t, ev] = time_modes(m, k, fam, 3);
     fmt::print("  {:<28} {:>7} {:>10.2f} {:>8}\n", label, m.m, t * 1e3, ev);
   };
   for (const char* mesh : {"1x1", "2x2", "4x4", "8x8", "16x16"})
     row(std::string("beam (plane) ") + mesh, beam, mesh, 8, {ModeFamily::BendingXZ});
-  Scene spatial = beam;
-  spatial.physics = Physics::Spatial;
   for (const char* mesh : {"1x1", "2x2", "4x4", "6x6"}) row(std::string("beam (spatial) ") + mesh, spatial, mesh, 8, {});
   for (const char* mesh : {"4", "7", "10", "20", "40"}) row(std::string("plate ") + mesh + " strips", plate, mesh, 8, {});
 
   fmt::print("\ncost vs number of modes:\n");
   fmt::print("  {:<28} {:>7} {:>10} {:>8}\n", "model", "modes", "time ms", "evals");
+  const PrismModel beam22 = build_model(beam, Discretization::parse("2x2"));
   for (int k : {6, 12, 25, 50, 100}) {
-    const PrismModel m = build_model(beam, Discretization::parse("2x2"));
-    long ev = 0;
-    const double t = median_time(
-        [&] {
-          LineAnalysis la(m);
-          ev = la.modes(k, {ModeFamily::BendingXZ}).evaluations;
-        },
-        3);
+    const auto [t, ev] = time_modes(beam22, k, {ModeFamily::BendingXZ}, 3);
     fmt::print("  {:<28} {:>7} {:>10.2f} {:>8}\n", "beam 2x2", k, t * 1e3, ev);
   }
+  const PrismModel plate10 = build_model(plate, Discretization::parse("10"));
   for (int k : {8, 16, 32, 64, 100}) {
-    const PrismModel m = build_model(plate, Discretization::parse("10"));
-    long ev = 0;
-    const double t = median_time(
-        [&] {
-          LineAnalysis la(m);
-          ev = la.modes(k).evaluations;
-        },
-        3);
+    const auto [t, ev] = time_modes(plate10, k, {}, 3);
     fmt::print("  {:<28} {:>7} {:>10.2f} {:>8}\n", "plate 10 strips", k, t * 1e3, ev);
   }
   return 0;

@@ -221,7 +221,7 @@ void double_reflected(Mat& K, const Solver& solve, const Eigen::VectorXd& p) {
   K.bottomLeftCorner(m, m) = K.topRightCorner(m, m).transpose();
 }
 
-
+/// reflection_signs (segment_dynamic_stiffness.hpp), real or complex.
 template <class Mat>
 std::optional<Eigen::VectorXd> reflection_signs_impl(const Mat& A) {
   const Eigen::Index n2 = A.rows();
