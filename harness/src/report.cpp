@@ -33,6 +33,50 @@ std::string limit_str(const ModelLimit& lim) {
 
 }  // namespace
 
+namespace {
+
+/// The time-to-accuracy rows of the scene's other quantities, where any method measured them:
+/// static deflections at the probes (relative, as the frequencies) and the FRF (median |error| in
+/// dB; 0.1 dB is about 1 % in amplitude), each against the same model limits.
+void write_other_quantities(Doc& doc, const SceneComparison& c) {
+  struct Other {
+    Quantity q;
+    const char* what;
+    double targets[4];
+    std::vector<std::string> head;
+  };
+  const Other others[] = {
+      {Quantity::Deflections,
+       "Static deflections at the probes (largest relative error): time to each accuracy, the statics alone with "
+       "the model build, against the same limits.",
+       {1e-2, 1e-3, 1e-4, 1e-5},
+       {"method", "1 % [s]", "0.1 % [s]", "0.01 % [s]", "0.001 % [s]"}},
+      {Quantity::Frf,
+       "FRF (median |error| over the samples, in dB; 0.1 dB is about 1 % in amplitude): time to each accuracy, the "
+       "FRF alone with the model build, against the same limits.",
+       {0.1, 1e-2, 1e-3, 1e-4},
+       {"method", "0.1 dB [s]", "0.01 dB [s]", "0.001 dB [s]", "0.0001 dB [s]"}},
+  };
+  for (const Other& o : others) {
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& lim : c.limits) {
+      bool measured = false;
+      for (const auto& r : c.runs)
+        measured = measured || ((r.limit == lim.label || (r.limit.empty() && r.backend == lim.label)) && !r.failed() &&
+                                std::isfinite(r.disc_error(o.q)));
+      if (!measured) continue;
+      std::vector<std::string> row = {lim.label};
+      for (double t : o.targets) row.push_back(time_str(time_to_accuracy(c, lim.label, t, o.q)));
+      rows.push_back(row);
+    }
+    if (rows.empty()) continue;
+    doc.para(o.what);
+    doc.table(o.head, rows, 1);
+  }
+}
+
+}  // namespace
+
 void write_summary(Doc& doc, const std::vector<SceneComparison>& all) {
   doc.heading(2, "Summary: how fast each method converges to its own model, and how far that model is from the best reference",
               "summary");
@@ -75,6 +119,7 @@ void write_summary(Doc& doc, const std::vector<SceneComparison>& all) {
     doc.table({"method", "converges to", "1 % [s]", "0.1 % [s]", "0.01 % [s]", "0.001 % [s]", "observed order",
                "model error", "cheapest at"},
               rows, 2);
+    write_other_quantities(doc, c);
   }
 }
 

@@ -216,6 +216,12 @@ BOOST_AUTO_TEST_CASE(report_files_agree_with_the_runs) {
   const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   BOOST_TEST(text.find("deliberate failure") != std::string::npos);  // the failed row says why
   BOOST_TEST(text.find("Table 1 of the prism paper") != std::string::npos);
+  // The summary times each quantity a method measured to 1e-2 ... 1e-5: frequencies always, the
+  // statics where any run has a deflection error against its limit.
+  BOOST_TEST(text.find("| 0.001 % [s] |") != std::string::npos);
+  bool statics = false;
+  for (const auto& r : all[0].runs) statics = statics || std::isfinite(r.disc_error(Quantity::Deflections));
+  BOOST_TEST((text.find("Static deflections at the probes") != std::string::npos) == statics);
 }
 
 // A folder that cannot be written is an error naming the path and the reason, never "written".
