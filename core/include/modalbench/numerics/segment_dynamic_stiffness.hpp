@@ -41,13 +41,6 @@ struct SegmentDivided {
 SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda, const Eigen::MatrixXd& A_0,
                                                  double lambda, double h);
 
-/// A long segment's dynamic stiffness by repeated doubling: a base piece of length
-/// h / 2^levels from exp(A h / 2^levels), then `levels` times two equal pieces joined by
-/// condensing their middle node (S = K22 + K11; K_2h = [[K11 - K12 S^-1 K21, -K12 S^-1 K12],
-/// [-K21 S^-1 K21, K22 - K21 S^-1 K12]]). Exact and stable where exp(A h) is not. The middle
-/// nodes' negative pivots give the Wittrick-Williams J0 of the long segment (its clamped-clamped
-/// natural frequencies below lambda; the base piece must have none: |p| h_base small), and
-/// log |det Tdf| follows from |det Tdf(2h)| = |det Tdf(h)|^2 |det S|.
 /// The reflection of a uniform segment end for end (x -> h - x): signs p_i = +-1, one per field,
 /// with R A R = -A for R = diag(P, -P), P = diag(p), i.e. P A11 P = -A11, P A12 P = A12,
 /// P A21 P = A21 exactly (a pattern of zeros: which fields are even and which odd in x). Then
@@ -66,6 +59,13 @@ Eigen::VectorXcd state_wavenumbers(const Eigen::MatrixXd& A);
 /// Ignore: the general way always, a second way to the same matrix).
 enum class EndReflection { Use, Ignore };
 
+/// A long segment's dynamic stiffness by repeated doubling: a base piece of length
+/// h / 2^levels from exp(A h / 2^levels), then `levels` times two equal pieces joined by
+/// condensing their middle node (S = K22 + K11; K_2h = [[K11 - K12 S^-1 K21, -K12 S^-1 K12],
+/// [-K21 S^-1 K21, K22 - K21 S^-1 K12]]). Exact and stable where exp(A h) is not. The middle
+/// nodes' negative pivots give the Wittrick-Williams J0 of the long segment (its clamped-clamped
+/// natural frequencies below lambda; the base piece must have none: |p| h_base small), and
+/// log |det Tdf| follows from |det Tdf(2h)| = |det Tdf(h)|^2 |det S|.
 struct LongSegment {
   Eigen::MatrixXd K;
   int clamped_below = 0;       ///< J0 of the segment
