@@ -13,8 +13,6 @@ namespace modalbench {
 
 namespace {
 
-constexpr double kSafety = kRoacheSafetyFactor, kGuardSafety = kRoacheGuardFactor;
-
 /// c(r) of the header: the coefficient of D h^s left in R(h) by one Richardson step of ratio r.
 double residual_coefficient(double r, double p, double s) { return (std::pow(r, p) - std::pow(r, s)) / (std::pow(r, p) - 1.0); }
 
@@ -41,7 +39,7 @@ Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r,
   const double rH = qc + (qc - qcc) / (std::pow(r2, p) - 1.0);
   x.value = rh;
   if (!std::isfinite(qccc)) {
-    x.error = kSafety * extrapolation_error(rh - rH, r, r2, p, s);
+    x.error = kRoacheSafetyFactor * extrapolation_error(rh - rH, r, r2, p, s);
     return x;
   }
   // A fourth mesh: R's own sequence R(h), R(H), R(2H) shows its order, and the coarser pair's
@@ -57,7 +55,7 @@ Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r,
   }
   const double e1 = extrapolation_error(D1, r, r2, p, s_eff);
   const double e2 = extrapolation_error(D2, r2, r3, p, s_eff) / std::pow(r, s_eff);
-  x.error = std::max(kSafety * e1, kGuardSafety * e2);
+  x.error = std::max(kRoacheSafetyFactor * e1, kRoacheGuardFactor * e2);
   return x;
 }
 
@@ -185,7 +183,7 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
           rel += std::abs(d1) * std::abs(1.0 / (std::pow(r, p) - 1.0) - 1.0 / (std::pow(r, po) - 1.0)) / std::abs(f[i]);
         const bool resolved = std::abs(d2) <= kMaxCoarseDifference * std::abs(f[i]);
         if (!resolved || ((std::abs(d1) > noise && std::abs(d2) > noise) && !(std::abs(po - p) <= kAsymptoticOrderTolerance * p))) {
-          rel = std::max(rel, kSafety * std::abs(d1) / (std::pow(r, p) - 1.0) / std::abs(f[i]));
+          rel = std::max(rel, kRoacheSafetyFactor * std::abs(d1) / (std::pow(r, p) - 1.0) / std::abs(f[i]));
           pre_asymptotic.push_back(std::isfinite(po) ? fmt::format("{} ({:.2g})", i + 1, po) : fmt::format("{} (none)", i + 1));
         }
         rel += solve;
@@ -246,12 +244,12 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
   if (!x.frequencies_rad_s.empty()) orders.push_back(fmt::format("{:g} (frequencies)", next_order));
   if (!x.deflections.empty()) orders.push_back(fmt::format("{:g} (deflections)", p));
   if (!orders.empty())
-    how += fmt::format("; estimate {:g} |R(h) - R(H)| scaled for an error term of order {}", kSafety,
+    how += fmt::format("; estimate {:g} |R(h) - R(H)| scaled for an error term of order {}", kRoacheSafetyFactor,
                        fmt::join(orders, " and "));
   if (fourth)
     how += fmt::format(", or {:g} times the same estimate of R(H) carried to h where larger (the fourth mesh), with the "
                        "order R's sequence shows where lower",
-                       kGuardSafety);
+                       kRoacheGuardFactor);
   if (solve > 0) how += fmt::format(", plus the solve's own bound {:.2g}", solve);
   for (const auto& w : why) how += "; " + w;
   x.note = how;

@@ -268,10 +268,10 @@ double peak_resident_bytes() {
 
 std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e9); }
 
-/// Roache's factors of safety (result.hpp): 3 for a two-mesh estimate with the formal order, 1.25
-/// for the guard from the next coarser pair (a coarse pair converges faster than its formal order
-/// as a rule, so carrying it to h with that order over-states the error rather than under-states it).
-constexpr double kSafetyFactor = kRoacheSafetyFactor, kGuardFactor = kRoacheGuardFactor;
+// Roache's factors of safety (extrapolation.hpp): kRoacheSafetyFactor for a two-mesh estimate with
+// the formal order, kRoacheGuardFactor for the guard from the next coarser pair (a coarse pair
+// converges faster than its formal order as a rule, so carrying it to h with that order over-states
+// the error rather than under-states it).
 
 /// A solve of the error estimate: its mesh, how much coarser it is than the next finer one, and
 /// its result.
@@ -294,7 +294,7 @@ std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Sc
   e.coarse_mesh = coarse.spec;
   e.ratio = coarse.ratio;
   e.order = order;
-  e.safety_factor = kSafetyFactor;
+  e.safety_factor = kRoacheSafetyFactor;
   const bool third = coarser && coarser->result && !other_is_finer;
   if (third) e.coarser_mesh = coarser->spec;
   const double rp = std::pow(coarse.ratio, order);
@@ -327,8 +327,8 @@ std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Sc
         dn2 = (std::pow(coarser->ratio, p) - 1.0) * rpo;
       }
     }
-    double err = kSafetyFactor * d1 / dn / scale;
-    if (std::isfinite(d2)) err = std::max(err, kGuardFactor * d2 / dn2 / scale);
+    double err = kRoacheSafetyFactor * d1 / dn / scale;
+    if (std::isfinite(d2)) err = std::max(err, kRoacheGuardFactor * d2 / dn2 / scale);
     return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
   };
   std::vector<std::string> problems;
@@ -372,7 +372,7 @@ std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Sc
                                          ? fmt::format("{:g}, down to the observed {:.2g}: not yet in the asymptotic range",
                                                        order, lowest_order)
                                          : fmt::format("{:g}", order),
-                                     kSafetyFactor, kGuardFactor,
+                                     kRoacheSafetyFactor, kRoacheGuardFactor,
                                      std::isfinite(solve) ? fmt::format(", plus the solve's own bound {:.2g}", solve)
                                                           : std::string(),
                                      e.tolerance));
@@ -403,17 +403,17 @@ std::pair<ErrorEstimate, std::vector<std::string>> judge_discretization(const Sc
   if (other_is_finer)
     e.note = fmt::format("grid convergence index against the finer mesh {}: {:g} |q(mesh {}) - q(mesh {})| {:.3g}^{:g} "
                          "/ ({:.3g}^{:g} - 1), relative (no coarser mesh of the family)",
-                         coarse.spec, kSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order, coarse.ratio,
+                         coarse.spec, kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order, coarse.ratio,
                          order);
   else if (third)
     e.note = fmt::format("grid convergence index: max({:g} |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), {:g} |q(mesh {}) - "
                          "q(mesh {})| / ({:.3g}^{:g} - 1) / {:.3g}^{:g}), relative; p the observed order per quantity "
                          "where the three meshes show a lower one (at least 1/4)",
-                         kSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order, kGuardFactor, coarse.spec,
+                         kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order, kRoacheGuardFactor, coarse.spec,
                          coarser->spec, coarser->ratio, order, coarse.ratio, order);
   else
     e.note = fmt::format("grid convergence index: {:g} |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), relative",
-                         kSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order);
+                         kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order);
   if (std::isfinite(e.frequencies_solve))
     e.note += fmt::format("; frequencies plus the solve's own error bound {:.2g}", e.frequencies_solve);
   return {e, problems};

@@ -64,11 +64,12 @@ std::optional<Discretization> DtfmSolver::finer_mesh(const Scene& scene, const D
   return Discretization{{static_cast<int>(n)}};
 }
 
-// Fitted to the dtfm benchmarks on the 2-core machine: a 40-strip plate takes 0.45 s for 8 modes (its two
-// symmetry classes side by side, about 125 count evaluations) and
-// the cost grows about 8-fold per doubling of strips (the block LDL' of the 3 fields per line and the
-// segment exponentials); the spatial 6 x 6 beam (216 fields) 1.15 s for 8 modes; a FRF sample costs
-// about one count evaluation. Memory is a few dense blocks per line and segment.
+// Fitted to bench_dtfm_timing on the 2-core machine, built with MODALBENCH_ARCH=none (the slower of
+// the two builds; x86-64-v3 takes 0.13 s): a 40-strip plate takes 0.21 s for 8 modes (its two
+// symmetry classes side by side, about 111 count evaluations) and the cost grows about 5- to 8-fold
+// per doubling of strips (the segment exponentials and doublings); the spatial 6 x 6 beam (216
+// fields) 0.23 s for 8 modes with x86-64-v3; a FRF sample costs about one count evaluation. Memory
+// is a few dense blocks per line and segment.
 ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& mesh, const Options&) const {
   ResourceEstimate e;
   double fields = 0;  // prism DOF fields in the model
@@ -79,7 +80,7 @@ ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& 
   }
   if (fields <= 0) return e;
   const double scale = std::pow(fields / 123.0, 3.0);  // 40 strips: 123 fields
-  const double per_eval = 0.45 / 125.0 * scale;       // ~125 count evaluations for 8 modes
+  const double per_eval = 0.21 / 111.0 * scale;       // ~111 count evaluations for 8 modes
   const auto& rq = scene.request;
   e.seconds = per_eval * (20.0 * std::max(0, rq.modes) + 10.0 * static_cast<double>(rq.probes.size()) + (rq.frf ? rq.frf->points : 0));
   e.bytes = 8.0 * fields * fields * 200.0;

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "modalbench/harness/files.hpp"
@@ -60,11 +61,8 @@ void write_other_quantities(Doc& doc, const SceneComparison& c) {
   for (const Other& o : others) {
     std::vector<std::vector<std::string>> rows;
     for (const auto& lim : c.limits) {
-      bool measured = false;
-      for (const auto& r : c.runs)
-        measured = measured || ((r.limit == lim.label || (r.limit.empty() && r.backend == lim.label)) && !r.failed() &&
-                                std::isfinite(r.disc_error(o.q)));
-      if (!measured) continue;
+      // Measured at all: some run of it reaches an unbounded target.
+      if (!std::isfinite(time_to_accuracy(c, lim.label, std::numeric_limits<double>::infinity(), o.q))) continue;
       std::vector<std::string> row = {lim.label};
       for (double t : o.targets) row.push_back(time_str(time_to_accuracy(c, lim.label, t, o.q)));
       rows.push_back(row);

@@ -102,16 +102,14 @@ Mat exp_anticommuting(const Mat& B, const Eigen::VectorXd& r) {
   Mat up, vp, um, vm;
   polys(Mat(Bpm * Bmp), up, vp);
   polys(Mat(Bmp * Bpm), um, vm);
-  Mat num = Mat::Zero(n, n);  // in the order [plus; minus]
-  Mat den = Mat::Zero(n, n);
+  Mat num(n, n);  // V + U in the order [plus; minus]; V - U flips U's (off-diagonal) blocks
   num.topLeftCorner(a, a) = vp;
   num.bottomRightCorner(b, b) = vm;
   num.topRightCorner(a, b).noalias() = Bpm * um;
   num.bottomLeftCorner(b, a).noalias() = Bmp * up;
-  den.topLeftCorner(a, a) = vp;
-  den.bottomRightCorner(b, b) = vm;
-  den.topRightCorner(a, b) = -num.topRightCorner(a, b);
-  den.bottomLeftCorner(b, a) = -num.bottomLeftCorner(b, a);
+  Mat den = num;
+  den.topRightCorner(a, b) *= -1.0;
+  den.bottomLeftCorner(b, a) *= -1.0;
   Mat E = den.partialPivLu().solve(num);
   for (int i = 0; i < squarings; ++i) E = (E * E).eval();
   std::vector<Eigen::Index> order(plus);
@@ -185,8 +183,19 @@ void double_in_place(Mat& K, const Solver& solve, Eigen::Index m, Mat& rhs, Mat&
   K = 0.5 * (out + out.transpose());
 }
 
-/// K's blocks made exactly what the reflection requires (K22 = P K11 P, K21 = K12^T = P K12 P),
-/// each from the mean of the two copies it has.
+/// K from its near-end blocks K11, K12 as the reflection requires them (PP = p p^T): K11
+/// symmetric, K12 = P K12^T P, K22 = P K11 P, K21 = K12^T; each from the mean of its two copies.
+template <class Mat>
+void set_reflected(Mat& K, const Mat& K11, const Mat& K12, const Mat& PP) {
+  const Eigen::Index m = PP.rows();
+  K.topLeftCorner(m, m) = 0.5 * (K11 + K11.transpose());
+  K.topRightCorner(m, m) = 0.5 * (K12 + (PP.array() * K12.transpose().array()).matrix());
+  K.bottomRightCorner(m, m) = (PP.array() * K.topLeftCorner(m, m).array()).matrix();
+  K.bottomLeftCorner(m, m) = K.topRightCorner(m, m).transpose();
+}
+
+/// K's blocks made exactly what the reflection requires (set_reflected), each from the mean of
+/// the copies it has.
 template <class Mat>
 void impose_reflection(Mat& K, const Eigen::VectorXd& p) {
   using Scalar = typename Mat::Scalar;
@@ -194,10 +203,7 @@ void impose_reflection(Mat& K, const Eigen::VectorXd& p) {
   const Mat PP = (p * p.transpose()).template cast<Scalar>();
   const Mat K11 = (0.5 * (K.topLeftCorner(m, m).array() + PP.array() * K.bottomRightCorner(m, m).array())).matrix();
   const Mat K12 = (0.5 * (K.topRightCorner(m, m).array() + PP.array() * K.bottomLeftCorner(m, m).array())).matrix();
-  K.topLeftCorner(m, m) = 0.5 * (K11 + K11.transpose());
-  K.topRightCorner(m, m) = 0.5 * (K12 + (PP.array() * K12.transpose().array()).matrix());
-  K.bottomRightCorner(m, m) = (PP.array() * K.topLeftCorner(m, m).array()).matrix();
-  K.bottomLeftCorner(m, m) = K.topRightCorner(m, m).transpose();
+  set_reflected(K, K11, K12, PP);
 }
 
 /// One doubling step of a segment symmetric under reflection (impose_reflection's form): the two
@@ -215,10 +221,7 @@ void double_reflected(Mat& K, const Solver& solve, const Eigen::VectorXd& p) {
   const Mat PYP = (PP.array() * Y.array()).matrix();
   Mat n12;
   n12.noalias() = -K.topRightCorner(m, m) * PYP;
-  K.topLeftCorner(m, m) = 0.5 * (n11 + n11.transpose());
-  K.topRightCorner(m, m) = 0.5 * (n12 + (PP.array() * n12.transpose().array()).matrix());
-  K.bottomRightCorner(m, m) = (PP.array() * K.topLeftCorner(m, m).array()).matrix();
-  K.bottomLeftCorner(m, m) = K.topRightCorner(m, m).transpose();
+  set_reflected(K, n11, n12, PP);
 }
 
 /// reflection_signs (segment_dynamic_stiffness.hpp), real or complex.

@@ -137,11 +137,14 @@ double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, dou
       if (root.converged) return estimate;
       // Stopped: accepted only where the count confirms the estimate to the rounding floor of a
       // well-resolved root (the bracket the counts leave is itself that narrow, and is its bound).
-      auto floor_reached = [&] { return iv.hi - iv.lo <= kPolishFloor * std::max(std::abs(iv.lo), std::abs(iv.hi)); };
-      if (floor_reached()) {
-        floor_width = std::max(floor_width, (iv.hi - iv.lo) / std::max(std::abs(iv.lo), std::abs(iv.hi)));
-        return estimate;
-      }
+      // The counts' bracket at the floor: its relative width becomes the value's bound.
+      auto at_floor = [&] {
+        const double width = (iv.hi - iv.lo) / std::max(std::abs(iv.lo), std::abs(iv.hi));
+        if (!(width <= kPolishFloor)) return false;
+        floor_width = std::max(floor_width, width);
+        return true;
+      };
+      if (at_floor()) return estimate;
       // The determinant stopped next to one end of a wide bracket (a root of a 40-strip plate sat
       // 1e-12 below the end it came from, the other end 2e-3 away): one count just across the
       // estimate, on the wide side, usually confirms it; bisecting from the far end took 17.
@@ -151,10 +154,7 @@ double polish_isolated(const std::function<CountDet(double)>& E, Bracket iv, dou
         const double probe = estimate - iv.lo > iv.hi - estimate ? estimate - w : estimate + w;
         if (probe > iv.lo && probe < iv.hi) {
           record(probe, E(probe));
-          if (floor_reached()) {
-            floor_width = std::max(floor_width, (iv.hi - iv.lo) / std::max(std::abs(iv.lo), std::abs(iv.hi)));
-            return std::clamp(estimate, iv.lo, iv.hi);
-          }
+          if (at_floor()) return std::clamp(estimate, iv.lo, iv.hi);
         }
       }
     }
