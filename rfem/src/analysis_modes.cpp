@@ -231,6 +231,7 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
   } else if (kf > 0) {
     if (kf >= n_eff) throw std::runtime_error("shift-invert Lanczos needs fewer modes than unknowns; use the dense solver");
     const double sigma = choose_shift(model, sys);
+    out.shift = sigma;
     ShiftInvertOp op(sys, R);
     Spectra::SparseSymMatProd<double> bop(sys.M);
     std::mt19937 rng(opt.seed);
@@ -513,7 +514,7 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
   }
   // No warning for a backward error above backward_error_warning alone: it enters each mode's
   // forward bound above, which is the check (in the estimate, and past the tolerance a numerical
-  // issue); above 1e-8 the solver flags the pairs outright. The level only triggers refinement.
+  // issue); above 1e-8 the solver warns (the shapes). The level only triggers refinement.
   out.eigen_seconds = seconds_since(t_eigen) - out.factor_seconds;
   return out;
 }

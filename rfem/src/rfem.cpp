@@ -312,9 +312,16 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
                               worst_mode, worst, s.request.tolerance));
     }
     if (!md.converged) sum.raise(Status::NotConverged, "eigen solve not converged: see warnings");
-    else if (md.max_backward_error > 1e-8)
-      sum.raise(Status::NumericalIssue, fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g})",
-                                                    md.max_backward_error, md.max_residual));
+    else if (md.max_backward_error > 1e-8 && !(sum.diagnostic("frequency_solve_error_bound") > s.request.tolerance))
+      // Not a verdict on the frequencies: a componentwise backward error is not what an eigensolver
+      // guarantees when the stiffnesses span many decades (a short, finely cut Euler-Bernoulli beam
+      // reached 3.9e-7 with its frequencies 1.2e-4 from the exact beam). Their forward bound above
+      // (this backward error times each mode's condition) is the check.
+      sum.warnings.push_back(fmt::format("eigen backward error {:.3g} above 1e-8 (residual {:.3g}): the frequencies "
+                                         "are judged by their forward bound ({:.2g}, within the tolerance); the mode "
+                                         "shapes carry this backward error",
+                                         md.max_backward_error, md.max_residual,
+                                         sum.diagnostic("frequency_solve_error_bound")));
     sum.timings_s.modes += since(t0);
   }
 

@@ -115,20 +115,43 @@ BOOST_AUTO_TEST_CASE(extreme_spring_ends_dense_and_lanczos_agree) {
     const Support sp = springs(K * EI / (L * L * L), K * EI / L);
     const Scene s = beam_scene(Physics::Bending, Theory::EulerBernoulli, sp, sp, L, h, h);
     const auto ex = exact::beam_bending_frequencies(exact::bending_xz(s), end(sp), end(sp), 6);
+    const rfem::Model model = build_beam(s, 128);
     Modes dense, lanczos;
-    const auto wd = frequencies(build_beam(s, 128), 6, EigenMethod::Dense, &dense);
-    const auto wl = frequencies(build_beam(s, 128), 6, EigenMethod::ShiftInvert, &lanczos);
+    const auto wd = frequencies(model, 6, EigenMethod::Dense, &dense);
+    const auto wl = frequencies(model, 6, EigenMethod::ShiftInvert, &lanczos);
     BOOST_TEST_MESSAGE("K = " << K << ": dense backward error " << dense.max_backward_error << ", Lanczos "
                               << lanczos.max_backward_error << "; " << dense.method);
-    BOOST_TEST(dense.max_backward_error < 1e-8);
-    BOOST_TEST(lanczos.max_backward_error < 1e-8);
-    // Agreement to 1e-6: on the soft springs the two near-rigid modes (0.02 rad/s) sit far above
-    // the shift (-106 rad^2/s^2), where Lanczos' relative tolerance on 1/(lambda - sigma) leaves
-    // 1e-7 in lambda; the dense pairs have the smaller backward error there.
+    BOOST_TEST_REQUIRE(dense.forward_bounds.size() >= 6);
+    BOOST_TEST_REQUIRE(lanczos.forward_bounds.size() >= 6);
+    // The componentwise backward error is not what a dense solver guarantees when the springs span
+    // 1e12 of the stiffness scale (on K = 1e12 it is 1.2e-8 on an AVX-512 build, 5e-16 on the
+    // Lanczos path of the same model): a check at 1e-8 tested one CPU's rounding. What both paths
+    // guarantee, and report, is each frequency's forward bound (backward error plus eps, times the
+    // mode's componentwise condition; Kato-Temple for near-rigid pairs), and each Rayleigh quotient
+    // carries the rounding of z'Kz itself, eps z'(|K| + lambda |M|)z / lambda (z M-normalized).
+    // The two paths agree within the sum of these (a frequency: half the eigenvalue's relative
+    // error) plus Lanczos' convergence, its relative tolerance 1e-10 on 1/(lambda - sigma), i.e.
+    // 1e-10 (lambda - sigma) / lambda in lambda: on the soft springs the two near-rigid modes
+    // (0.02 rad/s) sit far above the shift (-106 rad^2/s^2).
+    const rfem::System sys = rfem::assemble(model);
+    const SpMat Ka = sys.K.cwiseAbs(), Ma = sys.M.cwiseAbs();
+    auto rounding = [&](const Modes& md, std::size_t i) {
+      const Eigen::VectorXd za = md.Z.col(static_cast<long>(i)).cwiseAbs();
+      const double lambda = md.lambda[static_cast<long>(i)];
+      return std::numeric_limits<double>::epsilon() * za.dot(Ka * za + lambda * (Ma * za)) / lambda;
+    };
     for (std::size_t i = 0; i < 6; ++i) {
+      const double bound = 0.5 * (dense.forward_bounds[i] + lanczos.forward_bounds[i] + dense.near_rigid_bound +
+                                  lanczos.near_rigid_bound + rounding(dense, i) + rounding(lanczos, i) +
+                                  1e-10 * (lanczos.lambda[static_cast<long>(i)] - lanczos.shift) /
+                                      lanczos.lambda[static_cast<long>(i)]);
       BOOST_TEST_MESSAGE("  mode " << i + 1 << ": dense " << wd[i] << ", Lanczos " << wl[i] << ", exact "
-                                   << ex.omega_rad_s[i] << " rad/s");
-      BOOST_TEST(rel(wd[i], wl[i]) < 1e-6);
+                                   << ex.omega_rad_s[i] << " rad/s; difference " << rel(wd[i], wl[i])
+                                   << ", bound " << bound);
+      BOOST_TEST(rel(wd[i], wl[i]) <= bound);
+      // The bounds must leave the agreement meaningful: far below the 2e-3 at which both are held
+      // to the exact beam.
+      BOOST_TEST(bound < 1e-4);
       BOOST_TEST(rel(wd[i], ex.omega_rad_s[i]) < 2e-3);
     }
   }

@@ -53,6 +53,9 @@ struct Modes {
   int rigid = 0;
   std::string method;              ///< what was actually used, with the convergence record
   long iterations = 0;             ///< Lanczos restarts (0 for dense)
+  /// Lanczos: the shift sigma, rad^2/s^2 (its relative tolerance is on 1/(lambda - sigma), so a
+  /// pair's eigenvalue is converged to tolerance (lambda - sigma) / lambda); 0 on the dense path.
+  double shift = 0;
   long operations = 0;             ///< operator applications (solves)
   long sturm_count = -1;           ///< eigenvalues below the check point; -1 if not checked
   double max_residual = 0;
