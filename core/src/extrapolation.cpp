@@ -70,6 +70,10 @@ constexpr double kMaxCoarseDifference = 0.05;
 
 bool usable(const Result* r) { return r && severity(r->summary.status) < severity(Status::NumericalIssue); }
 
+ModeFamily family_of(const Result& res, std::size_t i) {
+  return i < res.mode_families.size() ? res.mode_families[i] : ModeFamily::Unknown;
+}
+
 }  // namespace
 
 double observed_order(double d1, double d2, double r, double r2, double lo, double hi) {
@@ -84,6 +88,172 @@ double observed_order(double d1, double d2, double r, double r2, double lo, doub
   }
   return lo;
 }
+
+namespace {
+
+/// One ratio per pair: the counts of every direction scale alike (errors C_x h_x^p + C_y h_y^p
+/// cancel only then).
+bool uniform_coarsening(const Result& a, const Result& b, double r) {
+  try {
+    const Discretization da = Discretization::parse(a.summary.mesh), db = Discretization::parse(b.summary.mesh);
+    if (da.counts.empty() || da.counts.size() != db.counts.size()) return false;
+    for (std::size_t k = 0; k < da.counts.size(); ++k)
+      if (std::abs(static_cast<double>(da.counts[k]) / db.counts[k] - r) > 1e-12 * r) return false;
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+/// The meshes of one extrapolation: the judged one and its coarser ones, with their ratios.
+struct Meshes {
+  const Result& fine;
+  const Result& coarse;
+  const Result& coarser;
+  const Result* coarsest;  ///< the fourth, where usable; nullptr: three meshes
+  double r, r2, r3, p;
+  /// A quantity on the fourth mesh (NaN: three meshes).
+  template <class Get>
+  double on_fourth(Get&& get) const {
+    return coarsest ? get(*coarsest) : kNotMeasured;
+  }
+};
+
+/// Why the frequencies of the three meshes cannot be paired mode by mode ("" where they can).
+std::string frequency_pairing_problem(const Meshes& m, double next_order) {
+  const auto& f = m.fine.frequencies_rad_s;
+  const auto& c = m.coarse.frequencies_rad_s;
+  const auto& cc = m.coarser.frequencies_rad_s;
+  if (!std::isfinite(next_order)) return "this back-end states no next order of its error expansion for this mesh family";
+  if (c.size() < f.size() || cc.size() < f.size())
+    return fmt::format("the coarser meshes have {} and {} of the {} modes", c.size(), cc.size(), f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const ModeFamily a = family_of(m.fine, i), b = family_of(m.coarse, i), d = family_of(m.coarser, i);
+    if (a != b || a != d)
+      return fmt::format("mode {} is {} on mesh {} but {} and {} on the coarser ones (the modes cross between the "
+                         "meshes)",
+                         i + 1, to_string(a), m.fine.summary.mesh, to_string(b), to_string(d));
+    if ((f[i] == 0) != (c[i] == 0) || (f[i] == 0) != (cc[i] == 0))
+      return fmt::format("mode {} is a rigid-body zero on some of the three meshes only", i + 1);
+  }
+  return "";
+}
+
+/// Every mode extrapolated with its estimate (a rigid-body zero stays an exact zero); what
+/// weakens the estimates into `why`.
+void extrapolate_frequencies(const Meshes& m, double next_order, double solve, Extrapolation& x,
+                             std::vector<std::string>& why) {
+  const auto& f = m.fine.frequencies_rad_s;
+  const auto& c = m.coarse.frequencies_rad_s;
+  const auto& cc = m.coarser.frequencies_rad_s;
+  const double r = m.r, r2 = m.r2, p = m.p;
+  double worst = 0;
+  std::vector<std::string> pre_asymptotic;
+  std::vector<std::size_t> lower_remainder;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f[i] == 0) {
+      x.frequencies_rad_s.push_back(0.0);
+      x.frequency_errors.push_back(0.0);
+      x.observed_orders.push_back(kNotMeasured);
+      continue;
+    }
+    // Differences within ten times the solve's rounding say nothing of the order.
+    const double noise = 10.0 * std::max(solve, 1e-13) * std::abs(f[i]);
+    const double fccc = m.on_fourth([&](const Result& res) {
+      return i < res.frequencies_rad_s.size() && family_of(res, i) == family_of(m.fine, i) && res.frequencies_rad_s[i] != 0
+                 ? res.frequencies_rad_s[i]
+                 : kNotMeasured;
+    });
+    const Extrapolated e = extrapolate(f[i], c[i], cc[i], fccc, r, r2, m.r3, p, next_order, noise);
+    if (std::isfinite(e.remainder_order) && e.remainder_order < next_order) lower_remainder.push_back(i + 1);
+    double rel = e.error / std::abs(e.value);
+    const double d1 = f[i] - c[i], d2 = c[i] - cc[i];
+    const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, 0.25, 4 * p) : kNotMeasured;
+    x.observed_orders.push_back(po);
+    // The order itself is known only as well as the meshes show it: the step with the observed
+    // order instead of p moves R by |d1| |1 / (r^p - 1) - 1 / (r^po - 1)|, which is added (mode 7
+    // of a plate with clamped long edges, rfem 40x24: observed 1.75, R 6.2e-5 off where the
+    // estimate for order 2 said 3.2e-5).
+    if (std::isfinite(po))
+      rel += std::abs(d1) * std::abs(1.0 / (std::pow(r, p) - 1.0) - 1.0 / (std::pow(r, po) - 1.0)) / std::abs(f[i]);
+    const bool resolved = std::abs(d2) <= kMaxCoarseDifference * std::abs(f[i]);
+    if (!resolved || ((std::abs(d1) > noise && std::abs(d2) > noise) && !(std::abs(po - p) <= kAsymptoticOrderTolerance * p))) {
+      rel = std::max(rel, kRoacheSafetyFactor * std::abs(d1) / (std::pow(r, p) - 1.0) / std::abs(f[i]));
+      pre_asymptotic.push_back(std::isfinite(po) ? fmt::format("{} ({:.2g})", i + 1, po) : fmt::format("{} (none)", i + 1));
+    }
+    rel += solve;
+    x.frequencies_rad_s.push_back(e.value);
+    x.frequency_errors.push_back(std::isfinite(rel) ? rel : std::numeric_limits<double>::infinity());
+    worst = std::max(worst, x.frequency_errors.back());
+  }
+  x.frequency_error = worst;
+  if (!lower_remainder.empty())
+    why.push_back(fmt::format("modes {}: the extrapolated values of the four meshes converge below order {:g}, and "
+                              "their estimates use the order observed",
+                              fmt::join(lower_remainder, ", "), next_order));
+  if (!pre_asymptotic.empty())
+    why.push_back(fmt::format("modes {} (observed orders): the three meshes are not yet asymptotic (an order more "
+                              "than {:g} % from {:g}, or the two coarser meshes more than {:g} % apart), so their "
+                              "estimate is no better than the mesh's own",
+                              fmt::join(pre_asymptotic, ", "), 100 * kAsymptoticOrderTolerance, p,
+                              100 * kMaxCoarseDifference));
+}
+
+/// Every component of every probe extrapolated; the estimate relative to the largest deflection.
+void extrapolate_deflections(const Meshes& m, Extrapolation& x, std::vector<std::string>& why) {
+  const auto& d = m.fine.deflections;
+  const auto& dc = m.coarse.deflections;
+  const auto& dcc = m.coarser.deflections;
+  if (dc.size() != d.size() || dcc.size() != d.size()) {
+    why.push_back("deflections not extrapolated: the coarser meshes lack probes");
+    return;
+  }
+  double scale = 0, worst = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    Deflection out = d[i];
+    using Member = double Deflection::*;
+    static constexpr std::array<Member, 6> members{&Deflection::u, &Deflection::v, &Deflection::w,
+                                                   &Deflection::theta_x, &Deflection::theta_y, &Deflection::theta_z};
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const Member mem = members[k];
+      const double qccc = m.on_fourth([&](const Result& res) {
+        return res.deflections.size() == d.size() ? res.deflections[i].*mem : kNotMeasured;
+      });
+      const Extrapolated e = extrapolate(d[i].*mem, dc[i].*mem, dcc[i].*mem, qccc, m.r, m.r2, m.r3, m.p, m.p,
+                                         1e-12 * std::abs(d[i].*mem));
+      out.*mem = e.value;
+      if (k < 3) {
+        scale = std::max(scale, std::abs(e.value));
+        worst = std::max(worst, e.error);
+      }
+    }
+    x.deflections.push_back(out);
+  }
+  x.deflection_error = scale > 0 ? worst / scale : (worst > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+}
+
+/// How the values were extrapolated and estimated, in words (Extrapolation::note).
+std::string describe(const Meshes& m, const Extrapolation& x, double next_order, double solve,
+                     const std::vector<std::string>& why) {
+  const bool fourth = m.coarsest != nullptr;
+  std::string how = fmt::format("Richardson: R = q(h) + (q(h) - q(H)) / (r^{:g} - 1) on meshes {} (r = {:.3g}, {:.3g}{})",
+                                m.p, x.meshes, m.r, m.r2, fourth ? fmt::format(", {:.3g}", m.r3) : std::string());
+  std::vector<std::string> orders;
+  if (!x.frequencies_rad_s.empty()) orders.push_back(fmt::format("{:g} (frequencies)", next_order));
+  if (!x.deflections.empty()) orders.push_back(fmt::format("{:g} (deflections)", m.p));
+  if (!orders.empty())
+    how += fmt::format("; estimate {:g} |R(h) - R(H)| scaled for an error term of order {}", kRoacheSafetyFactor,
+                       fmt::join(orders, " and "));
+  if (fourth)
+    how += fmt::format(", or {:g} times the same estimate of R(H) carried to h where larger (the fourth mesh), with the "
+                       "order R's sequence shows where lower",
+                       kRoacheGuardFactor);
+  if (solve > 0) how += fmt::format(", plus the solve's own bound {:.2g}", solve);
+  for (const auto& w : why) how += "; " + w;
+  return how;
+}
+
+}  // namespace
 
 Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh& coarse,
                                      const ExtrapolationMesh& coarser, double order, double next_order,
@@ -100,20 +270,8 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
     x.note = "not extrapolated: the meshes are not successively coarser";
     return x;
   }
-  // One ratio per pair: the counts of every direction scale alike (errors C_x h_x^p + C_y h_y^p
-  // cancel only then).
-  auto uniform = [](const Result& a, const Result& b, double r) {
-    try {
-      const Discretization da = Discretization::parse(a.summary.mesh), db = Discretization::parse(b.summary.mesh);
-      if (da.counts.empty() || da.counts.size() != db.counts.size()) return false;
-      for (std::size_t k = 0; k < da.counts.size(); ++k)
-        if (std::abs(static_cast<double>(da.counts[k]) / db.counts[k] - r) > 1e-12 * r) return false;
-      return true;
-    } catch (const std::exception&) {
-      return false;
-    }
-  };
-  if (!uniform(fine, *coarse.result, coarse.ratio) || !uniform(*coarse.result, *coarser.result, coarser.ratio)) {
+  if (!uniform_coarsening(fine, *coarse.result, coarse.ratio) ||
+      !uniform_coarsening(*coarse.result, *coarser.result, coarser.ratio)) {
     x.note = fmt::format("not extrapolated: meshes {}, {}, {} are not uniform coarsenings (every count divided by the "
                          "same ratio)",
                          fine.summary.mesh, coarse.result->summary.mesh, coarser.result->summary.mesh);
@@ -121,138 +279,21 @@ Extrapolation richardson_extrapolate(const Result& fine, const ExtrapolationMesh
   }
   // The fourth mesh only where it too is usable and a uniform coarsening; otherwise three.
   const bool fourth = coarsest && usable(coarsest->result) && coarsest->ratio > 1 &&
-                      uniform(*coarser.result, *coarsest->result, coarsest->ratio);
+                      uniform_coarsening(*coarser.result, *coarsest->result, coarsest->ratio);
+  const Meshes m{fine, *coarse.result, *coarser.result, fourth ? coarsest->result : nullptr,
+                 coarse.ratio, coarser.ratio, fourth ? coarsest->ratio : kNotMeasured, order};
   x.meshes = fmt::format("{}, {}, {}{}", fine.summary.mesh, coarse.result->summary.mesh, coarser.result->summary.mesh,
                          fourth ? ", " + coarsest->result->summary.mesh : std::string());
   std::vector<std::string> why;
-  const double r = coarse.ratio, r2 = coarser.ratio, r3 = fourth ? coarsest->ratio : kNotMeasured, p = order;
-  // The value on the fourth mesh where it has one (NaN: three meshes).
-  auto on_fourth = [&](auto&& get) { return fourth ? get(*coarsest->result) : kNotMeasured; };
   const double solve = std::isfinite(solve_bound) ? solve_bound : 0.0;
-  // Frequencies: every mode pairs index by index, within the same family, and a rigid-body zero is
-  // a zero on all three meshes (then it stays an exact zero).
-  const auto& f = fine.frequencies_rad_s;
-  const auto& c = coarse.result->frequencies_rad_s;
-  const auto& cc = coarser.result->frequencies_rad_s;
-  if (!f.empty()) {
-    auto family = [](const Result& res, std::size_t i) {
-      return i < res.mode_families.size() ? res.mode_families[i] : ModeFamily::Unknown;
-    };
-    std::string problem;
-    if (!std::isfinite(next_order)) problem = "this back-end states no next order of its error expansion for this mesh family";
-    else if (c.size() < f.size() || cc.size() < f.size())
-      problem = fmt::format("the coarser meshes have {} and {} of the {} modes", c.size(), cc.size(), f.size());
-    for (std::size_t i = 0; problem.empty() && i < f.size(); ++i) {
-      const ModeFamily a = family(fine, i), b = family(*coarse.result, i), d = family(*coarser.result, i);
-      if (a != b || a != d)
-        problem = fmt::format("mode {} is {} on mesh {} but {} and {} on the coarser ones (the modes cross between the "
-                              "meshes)",
-                              i + 1, to_string(a), fine.summary.mesh, to_string(b), to_string(d));
-      else if ((f[i] == 0) != (c[i] == 0) || (f[i] == 0) != (cc[i] == 0))
-        problem = fmt::format("mode {} is a rigid-body zero on some of the three meshes only", i + 1);
-    }
-    if (problem.empty()) {
-      double worst = 0;
-      std::vector<std::string> pre_asymptotic;
-      std::vector<std::size_t> lower_remainder;
-      for (std::size_t i = 0; i < f.size(); ++i) {
-        if (f[i] == 0) {
-          x.frequencies_rad_s.push_back(0.0);
-          x.frequency_errors.push_back(0.0);
-          x.observed_orders.push_back(kNotMeasured);
-          continue;
-        }
-        // Differences within ten times the solve's rounding say nothing of the order.
-        const double noise = 10.0 * std::max(solve, 1e-13) * std::abs(f[i]);
-        const double fccc = on_fourth([&](const Result& res) {
-          return i < res.frequencies_rad_s.size() && family(res, i) == family(fine, i) && res.frequencies_rad_s[i] != 0
-                     ? res.frequencies_rad_s[i]
-                     : kNotMeasured;
-        });
-        const Extrapolated e = extrapolate(f[i], c[i], cc[i], fccc, r, r2, r3, p, next_order, noise);
-        if (std::isfinite(e.remainder_order) && e.remainder_order < next_order) lower_remainder.push_back(i + 1);
-        double rel = e.error / std::abs(e.value);
-        const double d1 = f[i] - c[i], d2 = c[i] - cc[i];
-        const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, 0.25, 4 * p) : kNotMeasured;
-        x.observed_orders.push_back(po);
-        // The order itself is known only as well as the meshes show it: the step with the observed
-        // order instead of p moves R by |d1| |1 / (r^p - 1) - 1 / (r^po - 1)|, which is added (mode 7
-        // of a plate with clamped long edges, rfem 40x24: observed 1.75, R 6.2e-5 off where the
-        // estimate for order 2 said 3.2e-5).
-        if (std::isfinite(po))
-          rel += std::abs(d1) * std::abs(1.0 / (std::pow(r, p) - 1.0) - 1.0 / (std::pow(r, po) - 1.0)) / std::abs(f[i]);
-        const bool resolved = std::abs(d2) <= kMaxCoarseDifference * std::abs(f[i]);
-        if (!resolved || ((std::abs(d1) > noise && std::abs(d2) > noise) && !(std::abs(po - p) <= kAsymptoticOrderTolerance * p))) {
-          rel = std::max(rel, kRoacheSafetyFactor * std::abs(d1) / (std::pow(r, p) - 1.0) / std::abs(f[i]));
-          pre_asymptotic.push_back(std::isfinite(po) ? fmt::format("{} ({:.2g})", i + 1, po) : fmt::format("{} (none)", i + 1));
-        }
-        rel += solve;
-        x.frequencies_rad_s.push_back(e.value);
-        x.frequency_errors.push_back(std::isfinite(rel) ? rel : std::numeric_limits<double>::infinity());
-        worst = std::max(worst, x.frequency_errors.back());
-      }
-      x.frequency_error = worst;
-      if (!lower_remainder.empty())
-        why.push_back(fmt::format("modes {}: the extrapolated values of the four meshes converge below order {:g}, and "
-                                  "their estimates use the order observed",
-                                  fmt::join(lower_remainder, ", "), next_order));
-      if (!pre_asymptotic.empty())
-        why.push_back(fmt::format("modes {} (observed orders): the three meshes are not yet asymptotic (an order more "
-                                  "than {:g} % from {:g}, or the two coarser meshes more than {:g} % apart), so their "
-                                  "estimate is no better than the mesh's own",
-                                  fmt::join(pre_asymptotic, ", "), 100 * kAsymptoticOrderTolerance, p,
-                                  100 * kMaxCoarseDifference));
-    } else {
+  if (!fine.frequencies_rad_s.empty()) {
+    if (const std::string problem = frequency_pairing_problem(m, next_order); problem.empty())
+      extrapolate_frequencies(m, next_order, solve, x, why);
+    else
       why.push_back("frequencies not extrapolated: " + problem);
-    }
   }
-  // Deflections: every component of every probe.
-  const auto& d = fine.deflections;
-  const auto& dc = coarse.result->deflections;
-  const auto& dcc = coarser.result->deflections;
-  if (!d.empty()) {
-    if (dc.size() != d.size() || dcc.size() != d.size()) {
-      why.push_back("deflections not extrapolated: the coarser meshes lack probes");
-    } else {
-      double scale = 0, worst = 0;
-      for (std::size_t i = 0; i < d.size(); ++i) {
-        Deflection out = d[i];
-        using Member = double Deflection::*;
-        static constexpr std::array<Member, 6> members{&Deflection::u, &Deflection::v, &Deflection::w,
-                                                       &Deflection::theta_x, &Deflection::theta_y, &Deflection::theta_z};
-        for (std::size_t k = 0; k < members.size(); ++k) {
-          const Member m = members[k];
-          const double qccc = on_fourth([&](const Result& res) {
-            return res.deflections.size() == d.size() ? res.deflections[i].*m : kNotMeasured;
-          });
-          const Extrapolated e = extrapolate(d[i].*m, dc[i].*m, dcc[i].*m, qccc, r, r2, r3, p, p,
-                                             1e-12 * std::abs(d[i].*m));
-          out.*m = e.value;
-          if (k < 3) {
-            scale = std::max(scale, std::abs(e.value));
-            worst = std::max(worst, e.error);
-          }
-        }
-        x.deflections.push_back(out);
-      }
-      x.deflection_error = scale > 0 ? worst / scale : (worst > 0 ? std::numeric_limits<double>::infinity() : 0.0);
-    }
-  }
-  std::string how = fmt::format("Richardson: R = q(h) + (q(h) - q(H)) / (r^{:g} - 1) on meshes {} (r = {:.3g}, {:.3g}{})",
-                                p, x.meshes, r, r2, fourth ? fmt::format(", {:.3g}", r3) : std::string());
-  std::vector<std::string> orders;
-  if (!x.frequencies_rad_s.empty()) orders.push_back(fmt::format("{:g} (frequencies)", next_order));
-  if (!x.deflections.empty()) orders.push_back(fmt::format("{:g} (deflections)", p));
-  if (!orders.empty())
-    how += fmt::format("; estimate {:g} |R(h) - R(H)| scaled for an error term of order {}", kRoacheSafetyFactor,
-                       fmt::join(orders, " and "));
-  if (fourth)
-    how += fmt::format(", or {:g} times the same estimate of R(H) carried to h where larger (the fourth mesh), with the "
-                       "order R's sequence shows where lower",
-                       kRoacheGuardFactor);
-  if (solve > 0) how += fmt::format(", plus the solve's own bound {:.2g}", solve);
-  for (const auto& w : why) how += "; " + w;
-  x.note = how;
+  if (!fine.deflections.empty()) extrapolate_deflections(m, x, why);
+  x.note = describe(m, x, next_order, solve, why);
   return x;
 }
 

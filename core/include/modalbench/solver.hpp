@@ -120,6 +120,10 @@ struct Capability {
   bool any() const { return modes || statics || frf; }
 };
 
+namespace detail {
+class SolvePipeline;
+}
+
 class Solver {
  public:
   virtual ~Solver() = default;
@@ -164,6 +168,7 @@ class Solver {
   Result solve(const Scene& scene, const Discretization& mesh, const Options& options) const;
 
  protected:
+  friend class detail::SolvePipeline;  // solve()'s steps call do_solve
   /// The back-end's work (options.resolved is filled). May throw InputError for a bad
   /// discretization; std::bad_alloc becomes Status::ResourceLimit, any other exception
   /// Status::NumericalIssue with its message.

@@ -1,0 +1,197 @@
+// The discretization error of a meshed result from the same request on coarser meshes of its
+// family: Roache's grid convergence index, with the observed order where the meshes are not yet
+// asymptotic, judged against the scene's tolerance.
+#include "solve_internal.hpp"
+
+#include "modalbench/extrapolation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace modalbench {
+
+// Roache's factors of safety (extrapolation.hpp): kRoacheSafetyFactor for a two-mesh estimate with
+// the formal order, kRoacheGuardFactor for the guard from the next coarser pair (a coarse pair
+// converges faster than its formal order as a rule, so carrying it to h with that order over-states
+// the error rather than under-states it).
+
+namespace {
+
+/// The grid convergence index of one quantity on the judged mesh: max(3 e1, 1.25 e2) from q
+/// (judged), qc (coarse) and qcc (coarser, where there is one).
+class Gci {
+ public:
+  Gci(double order, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser, bool other_is_finer)
+      : order_(order), lowest_order_(order), r_(coarse.ratio), third_(coarser && coarser->result && !other_is_finer) {
+    const double rp = std::pow(r_, order);
+    // `fine` is the result judged; when the other mesh is the finer one, the error of the coarser
+    // result is |q_H - q_h| r^p / (r^p - 1).
+    denom_ = other_is_finer ? (rp - 1.0) / rp : rp - 1.0;
+    if (third_) {
+      r2_ = coarser->ratio;
+      denom2_ = (std::pow(r2_, order) - 1.0) * rp;
+    }
+  }
+
+  bool third() const { return third_; }
+  /// The lowest observed order used so far (frequencies), the formal order if none.
+  double lowest_order() const { return lowest_order_; }
+
+  /// Relative error estimate of q (scale: the quantity's size). Where the three meshes show an
+  /// order below first (the pair differences resolved, above `noise` relative to the scale, and
+  /// shrinking by less than r), the meshes are not yet in the asymptotic range: the observed
+  /// order is used instead (floored at 1/4), which widens the estimate. A dtfm plate whose
+  /// Kirchhoff penalty was set to 1e-3 converged at first order between 7, 15 and 30 strips; the
+  /// formal order gave 0.21 for an error of 0.55. Frequencies only (a NaN noise skips it): a
+  /// point load's deflection converges like h^2 log h, below its formal order on every mesh, and
+  /// its two-mesh estimate already holds (rfem's paper plate: 2e-4 off, estimate 6e-4).
+  double operator()(double q, double qc, double qcc, double scale, double noise = kNotMeasured) {
+    const double d1 = std::abs(q - qc), d2 = third_ && std::isfinite(qcc) ? std::abs(qc - qcc) : kNotMeasured;
+    double dn = denom_, dn2 = denom2_;
+    if (std::isfinite(noise) && std::isfinite(d2) && d1 > noise * scale && d2 > noise * scale) {
+      // Only below first order: between that and the formal order (a point load's h^2 log h, a
+      // Mindlin plate's mixed terms) the factor of safety 3 covers it, and widening there sent
+      // the default meshes' refinement of dtfm plates past minutes.
+      const double cap = std::min(order_, 1.0);
+      const double p = observed_order(d1, d2, r_, r2_, 0.25, cap);
+      if (p < cap) {
+        lowest_order_ = std::min(lowest_order_, p);
+        const double rpo = std::pow(r_, p);
+        dn = rpo - 1.0;
+        dn2 = (std::pow(r2_, p) - 1.0) * rpo;
+      }
+    }
+    double err = kRoacheSafetyFactor * d1 / dn / scale;
+    if (std::isfinite(d2)) err = std::max(err, kRoacheGuardFactor * d2 / dn2 / scale);
+    return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  double order_, lowest_order_, r_, r2_ = kNotMeasured, denom_ = 0, denom2_ = 0;
+  bool third_;
+};
+
+/// The frequencies' estimate (worst mode, plus the solve's own bound) into `e`; what exceeds
+/// the tolerance into `problems`.
+void judge_frequencies(const Result& fine, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser,
+                       double order, Gci& gci, ErrorEstimate& e, std::vector<std::string>& problems) {
+  const auto& f = fine.frequencies_rad_s;
+  const auto& c = coarse.result->frequencies_rad_s;
+  const std::vector<double> none;
+  const auto& cc = gci.third() ? coarser->result->frequencies_rad_s : none;
+  const std::size_t n = std::min(f.size(), c.size());
+  double noise = 1e-10;
+  for (const Result* x : {&fine, coarse.result, gci.third() ? coarser->result : nullptr})
+    if (x && std::isfinite(x->summary.diagnostic("frequency_solve_error_bound")))
+      noise = std::max(noise, 10.0 * x->summary.diagnostic("frequency_solve_error_bound"));
+  double worst = 0;
+  std::size_t worst_mode = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (f[i] == 0 && c[i] == 0) continue;  // rigid-body modes on both meshes
+    const double qcc = i < cc.size() && !(cc[i] == 0 && c[i] != 0) ? cc[i] : kNotMeasured;
+    const double rel = gci(f[i], c[i], qcc, std::max(std::abs(f[i]), std::abs(c[i])), noise);
+    if (!(rel <= worst)) {
+      worst = rel;
+      worst_mode = i + 1;
+    }
+  }
+  // The solve's own bound (rounding): refinement does not reduce it, Richardson does not see it.
+  const double solve = fine.summary.diagnostic("frequency_solve_error_bound");
+  e.frequencies_solve = solve;
+  e.frequencies = worst + (std::isfinite(solve) ? solve : 0.0);
+  if (n < f.size())
+    problems.push_back(fmt::format("frequencies: modes {}..{} have no counterpart on the coarser mesh {}, so their "
+                                   "discretization error is not estimated", n + 1, f.size(), coarse.spec));
+  // A solve bound past the tolerance is the back-end's own numerical issue (it says so); a finer
+  // mesh is advised only where the discretization part is what exceeds it.
+  if (!(e.frequencies <= e.tolerance) && !(std::isfinite(solve) && solve > e.tolerance))
+    problems.push_back(fmt::format("frequencies: estimated discretization error {:.2g} (mode {}; mesh {} against {}{}, "
+                                   "Richardson of order {}, factors of safety {:g} and {:g}{}) exceeds the tolerance "
+                                   "{:.2g} ([request] tolerance): use a finer mesh",
+                                   e.frequencies, worst_mode, fine.summary.mesh, coarse.spec,
+                                   gci.third() ? " and " + coarser->spec : std::string(),
+                                   gci.lowest_order() < order
+                                       ? fmt::format("{:g}, down to the observed {:.2g}: not yet in the asymptotic range",
+                                                     order, gci.lowest_order())
+                                       : fmt::format("{:g}", order),
+                                   kRoacheSafetyFactor, kRoacheGuardFactor,
+                                   std::isfinite(solve) ? fmt::format(", plus the solve's own bound {:.2g}", solve)
+                                                        : std::string(),
+                                   e.tolerance));
+}
+
+/// The deflections' estimate (worst component of every probe, relative to the largest
+/// deflection) into `e`; what exceeds the tolerance into `problems`.
+void judge_deflections(const Result& fine, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser,
+                       Gci& gci, ErrorEstimate& e, std::vector<std::string>& problems) {
+  const Result& cr = *coarse.result;
+  if (fine.deflections.size() != cr.deflections.size() || fine.deflections.empty()) return;
+  double scale = 0, worst = 0;
+  for (const auto& d : fine.deflections) scale = std::max({scale, std::abs(d.u), std::abs(d.v), std::abs(d.w)});
+  const bool third_defl = gci.third() && coarser->result->deflections.size() == fine.deflections.size();
+  if (!(scale > 0)) return;
+  for (std::size_t i = 0; i < fine.deflections.size(); ++i) {
+    const auto& x = fine.deflections[i];
+    const auto& y = cr.deflections[i];
+    const double nan = kNotMeasured;
+    const auto* z = third_defl ? &coarser->result->deflections[i] : nullptr;
+    worst = std::max({worst, gci(x.u, y.u, z ? z->u : nan, scale), gci(x.v, y.v, z ? z->v : nan, scale),
+                      gci(x.w, y.w, z ? z->w : nan, scale)});
+  }
+  e.deflections = worst;
+  if (!(worst <= e.tolerance))
+    problems.push_back(fmt::format("deflections: estimated discretization error {:.2g} of the largest deflection "
+                                   "(mesh {} against {}{}) exceeds the tolerance {:.2g} ([request] tolerance): use a "
+                                   "finer mesh",
+                                   worst, fine.summary.mesh, coarse.spec,
+                                   third_defl ? " and " + coarser->spec : std::string(), e.tolerance));
+}
+
+/// How the estimate was formed, in words (ErrorEstimate::note).
+std::string estimate_note(const ErrorEstimate& e, const Result& fine, const detail::MeshSolve& coarse,
+                          const std::optional<detail::MeshSolve>& coarser, bool third, bool other_is_finer) {
+  const double order = e.order;
+  std::string note;
+  if (other_is_finer)
+    note = fmt::format("grid convergence index against the finer mesh {}: {:g} |q(mesh {}) - q(mesh {})| {:.3g}^{:g} "
+                       "/ ({:.3g}^{:g} - 1), relative (no coarser mesh of the family)",
+                       coarse.spec, kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order, coarse.ratio,
+                       order);
+  else if (third)
+    note = fmt::format("grid convergence index: max({:g} |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), {:g} |q(mesh {}) - "
+                       "q(mesh {})| / ({:.3g}^{:g} - 1) / {:.3g}^{:g}), relative; p the observed order per quantity "
+                       "where the three meshes show a lower one (at least 1/4)",
+                       kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order, kRoacheGuardFactor,
+                       coarse.spec, coarser->spec, coarser->ratio, order, coarse.ratio, order);
+  else
+    note = fmt::format("grid convergence index: {:g} |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), relative",
+                       kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order);
+  if (std::isfinite(e.frequencies_solve))
+    note += fmt::format("; frequencies plus the solve's own error bound {:.2g}", e.frequencies_solve);
+  return note;
+}
+
+}  // namespace
+
+detail::Verdict detail::judge_discretization(const Scene& scene, double order, const Result& fine, const MeshSolve& coarse,
+                                             const std::optional<MeshSolve>& coarser, bool other_is_finer) {
+  ErrorEstimate e;
+  e.tolerance = scene.request.tolerance;
+  e.coarse_mesh = coarse.spec;
+  e.ratio = coarse.ratio;
+  e.order = order;
+  e.safety_factor = kRoacheSafetyFactor;
+  Gci gci(order, coarse, coarser, other_is_finer);
+  if (gci.third()) e.coarser_mesh = coarser->spec;
+  std::vector<std::string> problems;
+  if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty())
+    judge_frequencies(fine, coarse, coarser, order, gci, e, problems);
+  if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, gci, e, problems);
+  e.note = estimate_note(e, fine, coarse, coarser, gci.third(), other_is_finer);
+  return {e, problems};
+}
+
+}  // namespace modalbench

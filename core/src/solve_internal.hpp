@@ -1,0 +1,44 @@
+#pragma once
+// What the steps of Solver::solve (solve_pipeline.cpp) share inside core: the options in force,
+// the process's resources, and the verdict on a result's discretization error. Not installed.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "modalbench/result.hpp"
+#include "modalbench/scene.hpp"
+#include "modalbench/solver.hpp"
+
+namespace modalbench::detail {
+
+/// The back-end's options for one solve: its specs' defaults, then the scene's [backend.NAME]
+/// table, then the command line; throws InputError (source, key, reason) on an unknown key or a
+/// value out of its spec.
+ResolvedOptions resolve_options(const Solver& solver, const Scene& scene, const Options& options);
+
+/// Maps the first pages of this thread's stack now (resources.cpp says why).
+void map_stack_pages();
+/// Peak resident memory of this process so far (VmHWM), bytes; NaN where unknown.
+double peak_resident_bytes();
+/// "1.23 GB".
+std::string gigabytes(double bytes);
+
+/// A solve of the error estimate: its mesh, how much coarser it is than the next finer one, and
+/// its result.
+struct MeshSolve {
+  std::string spec;
+  double ratio = 2.0;
+  const Result* result = nullptr;
+};
+
+/// An error estimate and what of it exceeds the scene's tolerance (one sentence per quantity).
+using Verdict = std::pair<ErrorEstimate, std::vector<std::string>>;
+
+/// The discretization error of `fine` (result.hpp, ErrorEstimate) from `coarse` and, where given,
+/// `coarser` (the next coarser mesh). With other_is_finer, `coarse` is in fact a finer mesh (the
+/// judged one has no coarser): the roles of the pair swap and `coarser` is not used.
+Verdict judge_discretization(const Scene& scene, double order, const Result& fine, const MeshSolve& coarse,
+                             const std::optional<MeshSolve>& coarser = std::nullopt, bool other_is_finer = false);
+
+}  // namespace modalbench::detail

@@ -1,0 +1,448 @@
+// Solver::solve: the one pipeline every back-end shares, as named steps —
+//   check the request (validate, options, what the back-end can do),
+//   plan the meshes of the error estimate,
+//   estimate the resources (refused above the limits),
+//   refine the default mesh to the tolerance,
+//   solve the request on the mesh kept,
+//   estimate the error (where the refinement did not),
+//   extrapolate, and finish (nothing non-finite unflagged, timings).
+// Each step is a member function of SolvePipeline; the state they pass on is its members.
+#include "solve_internal.hpp"
+
+#include "modalbench/extrapolation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <new>
+#include <stdexcept>
+#include <utility>
+
+namespace modalbench {
+
+namespace detail {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// The coarser solves of the error estimate (H, 2H, and 4H where the family extrapolates), kept
+/// for the Richardson extrapolation (extrapolation.hpp).
+struct KeptSolves {
+  Result H, H2, H4;
+  double ratio = kNotMeasured, ratio2 = kNotMeasured, ratio3 = kNotMeasured;
+  bool three = false, four = false;
+};
+
+/// The last solves of the refinement, finest last: cur (h, judged), prev (H), r2 (2H, where
+/// `third` names it) and r3 (4H, for the extrapolation's check).
+struct RefinementWindow {
+  Result cur, prev, r2;
+  std::optional<Result> r3;
+  std::optional<MeshSolve> third;
+  std::string prev_spec;
+  double ratio_prev = 2.0;          ///< prev -> cur
+  double ratio3 = kNotMeasured;     ///< r3 -> r2
+};
+
+class SolvePipeline {
+ public:
+  SolvePipeline(const Solver& solver, const Scene& scene, const Discretization& mesh, const Options& options)
+      : solver_(solver), scene_(scene), mesh_(mesh), opt_(options), final_mesh_(mesh) {}
+
+  Result run();
+
+ private:
+  bool check_request();
+  void plan_estimate_meshes();
+  bool estimate_resources();
+  void refine_mesh();
+  void solve_request();
+  void estimate_error();
+  void record_estimate();
+  void extrapolate();
+  void finish();
+
+  // Parts of the steps.
+  RefinementWindow start_refinement();
+  bool refinement_step(RefinementWindow& w, double& last_estimate, double& last_time);
+  void keep_refinement_solves(RefinementWindow& w);
+  Result solve_light(const Scene& sc, const Discretization& m) const;
+  std::optional<Result> solve_optional(const Discretization& m) const;
+  double since_start() const { return seconds_since(t0_); }
+
+  const Solver& solver_;
+  const Scene& scene_;
+  const Discretization& mesh_;
+  Options opt_;
+  Clock::time_point t0_ = Clock::now();
+  Result result_;
+
+  Capability cap_;
+  std::vector<std::string> missing_;  ///< requested quantities the back-end does not compute
+  Scene light_;                       ///< what the error estimate needs: modes and statics
+
+  bool wants_estimate_ = false;
+  bool check_is_finer_ = false;  ///< the mesh has no coarser one: it is checked against a finer one
+  std::optional<CoarserMesh> coarse_, coarser2_, coarser3_;
+  double memory_limit_ = 0;
+  bool refused_ = false;  ///< refused before starting (resource limits): nothing to account for
+
+  Discretization final_mesh_;
+  std::optional<Verdict> verdict_;
+  std::vector<std::string> estimate_warnings_;
+  std::string refined_note_;
+  double estimate_time_ = 0;
+  KeptSolves kept_;
+};
+
+Result SolvePipeline::run() {
+  map_stack_pages();
+  auto& sum = result_.summary;
+  sum.mesh = mesh_.spec();
+  try {
+    if (check_request()) {
+      plan_estimate_meshes();
+      if (estimate_resources()) {
+        refine_mesh();
+        solve_request();
+        estimate_error();
+        record_estimate();
+        extrapolate();
+      }
+    }
+  } catch (const InputError& e) {
+    sum.raise(Status::InvalidInput, e.what());
+  } catch (const std::bad_alloc&) {
+    sum.raise(Status::ResourceLimit, solver_.name() + ": out of memory (std::bad_alloc): the request is too large "
+                                     "for this machine; use a coarser mesh or fewer modes");
+  } catch (const std::exception& e) {
+    sum.raise(Status::NumericalIssue, solver_.name() + " failed: " + e.what());
+  }
+  finish();
+  return std::move(result_);
+}
+
+/// Validates the scene and the options; false (Status::Unsupported, said why) where the back-end
+/// computes nothing of what is requested. What it leaves out is said after the solve.
+bool SolvePipeline::check_request() {
+  auto& sum = result_.summary;
+  validate(scene_);
+  opt_.resolved = resolve_options(solver_, scene_, opt_);
+  sum.method_requested = opt_.resolved.given();
+  cap_ = solver_.supports(scene_);
+  const auto& rq = scene_.request;
+  if (rq.modes > 0 && !cap_.modes) missing_.push_back("natural frequencies");
+  if (!rq.probes.empty() && !cap_.statics) missing_.push_back("static deflections");
+  if (rq.frf && !cap_.frf) missing_.push_back("FRF");
+  const bool wants_something = rq.modes > 0 || !rq.probes.empty() || rq.frf.has_value();
+  const bool can_something = (rq.modes > 0 && cap_.modes) || (!rq.probes.empty() && cap_.statics) || (rq.frf && cap_.frf);
+  if (!cap_.any() || (wants_something && !can_something)) {
+    sum.raise(Status::Unsupported, cap_.reason.empty() ? "nothing requested is supported" : cap_.reason);
+    return false;
+  }
+  light_ = scene_;
+  light_.request.frf.reset();
+  light_.request.shapes.reset();
+  return true;
+}
+
+/// The coarser meshes of the error estimate: H, 2H (the estimate takes the larger of two pairs),
+/// and 4H where the family extrapolates (CoarserMesh::next_order: it checks the extrapolated
+/// values' own order). A mesh too coarse to have a coarser one (1 beam segment, a 2 x 2 plate)
+/// is checked against a finer one instead.
+void SolvePipeline::plan_estimate_meshes() {
+  const auto& rq = scene_.request;
+  wants_estimate_ = opt_.estimate_error && (rq.modes > 0 || !rq.probes.empty()) && !mesh_.counts.empty();
+  if (!wants_estimate_) return;
+  coarse_ = solver_.coarser_mesh(scene_, mesh_, opt_);
+  if (!coarse_)
+    if (const std::optional<Discretization> f = solver_.finer_mesh(scene_, mesh_, 2.0)) {
+      coarse_ = CoarserMesh{*f, static_cast<double>(f->counts[0]) / mesh_.counts[0], solver_.mesh_order(scene_, opt_)};
+      check_is_finer_ = true;
+    }
+  if (coarse_ && !check_is_finer_) coarser2_ = solver_.coarser_mesh(scene_, coarse_->mesh, opt_);
+  if (coarser2_ && std::isfinite(coarse_->next_order)) coarser3_ = solver_.coarser_mesh(scene_, coarser2_->mesh, opt_);
+}
+
+/// The request's estimated peak memory and run time (the estimate's coarser meshes included);
+/// false (Status::ResourceLimit, said why) where either exceeds its limit.
+bool SolvePipeline::estimate_resources() {
+  auto& sum = result_.summary;
+  ResourceEstimate est = solver_.estimate(scene_, mesh_, opt_);
+  for (const std::optional<CoarserMesh>* c : {&coarse_, &coarser2_, &coarser3_})
+    if (*c) {
+      const ResourceEstimate ce = solver_.estimate(light_, (*c)->mesh, opt_);
+      est.bytes = std::max(est.bytes, ce.bytes);
+      est.seconds += ce.seconds;
+    }
+  if (est.bytes > 0) sum.set_diagnostic("estimated_memory_bytes", est.bytes);
+  if (est.seconds > 0) sum.set_diagnostic("estimated_time_s", est.seconds);
+  memory_limit_ = opt_.max_memory_bytes > 0 ? opt_.max_memory_bytes : default_memory_limit();
+  if (est.bytes > memory_limit_)
+    sum.raise(Status::ResourceLimit,
+              fmt::format("{}: refused before allocating: estimated peak memory {} ({}) exceeds the limit of {} ({}); "
+                          "raise it with --max-memory GB, or use a coarser mesh or fewer modes, loads or samples",
+                          solver_.name(), gigabytes(est.bytes), est.basis, gigabytes(memory_limit_),
+                          opt_.max_memory_bytes > 0 ? "as set" : "80 % of the memory this process may use"));
+  if (est.seconds > opt_.max_time_s)
+    sum.raise(Status::ResourceLimit,
+              fmt::format("{}: refused before starting: estimated run time {:.3g} s ({}) exceeds the limit of {:.3g} s; "
+                          "raise it with --max-time S, or use a coarser mesh or fewer modes, loads or samples",
+                          solver_.name(), est.seconds, est.basis, opt_.max_time_s));
+  refused_ = sum.status == Status::ResourceLimit;
+  return !refused_;
+}
+
+Result SolvePipeline::solve_light(const Scene& sc, const Discretization& m) const {
+  const auto ts = Clock::now();
+  Result x;
+  x.summary.mesh = m.spec();
+  solver_.do_solve(sc, m, opt_, x);
+  x.summary.total_time_s = seconds_since(ts);
+  return x;
+}
+
+/// The fourth mesh's solve: optional, so a failure only leaves the extrapolation with three.
+std::optional<Result> SolvePipeline::solve_optional(const Discretization& m) const {
+  try {
+    return solve_light(light_, m);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+/// The default mesh (no --mesh): refine it until the estimate meets the tolerance (light solves
+/// only; the whole request is then solved once on the mesh kept). A failed solve of the
+/// refinement leaves the request to the default mesh, whose own check says what it can.
+void SolvePipeline::refine_mesh() {
+  if (!coarse_ || !opt_.refine_to_tolerance) return;
+  const auto tc = Clock::now();
+  try {
+    RefinementWindow w = start_refinement();
+    // How far the estimates are from what this machine does: later steps are predicted with it.
+    double last_estimate = solver_.estimate(light_, final_mesh_, opt_).seconds, last_time = w.cur.summary.total_time_s;
+    for (int step = 0; step < 3 && !verdict_->second.empty(); ++step)
+      if (!refinement_step(w, last_estimate, last_time)) break;
+    keep_refinement_solves(w);
+    if (w.cur.summary.status != Status::Success && w.cur.summary.status != Status::NotConverged)
+      estimate_warnings_.push_back(fmt::format("a solve on mesh {} of the refinement was {}: {}", final_mesh_.spec(),
+                                               to_string(w.cur.summary.status), w.cur.summary.message));
+    estimate_time_ = seconds_since(tc);
+    // Provenance of the mesh and its estimate, not a doubt about them: said in the estimate's note.
+    if (final_mesh_.spec() != mesh_.spec())
+      refined_note_ = fmt::format("default mesh {} refined to {} to meet the tolerance {:.2g}", mesh_.spec(),
+                                  final_mesh_.spec(), scene_.request.tolerance);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    estimate_warnings_.push_back(std::string("refinement of the default mesh abandoned: ") + e.what());
+    verdict_.reset();
+    final_mesh_ = mesh_;
+  }
+}
+
+/// The first solves of the refinement (4H, 2H, H and h, coarse to fine) and the verdict on h.
+RefinementWindow SolvePipeline::start_refinement() {
+  RefinementWindow w;
+  if (coarser2_) {
+    if (coarser3_) {
+      w.r3 = solve_optional(coarser3_->mesh);
+      w.ratio3 = coarser3_->ratio;
+    }
+    w.r2 = solve_light(light_, coarser2_->mesh);
+    w.third = MeshSolve{coarser2_->mesh.spec(), coarser2_->ratio, &w.r2};
+  }
+  w.prev = solve_light(light_, check_is_finer_ ? mesh_ : coarse_->mesh);
+  w.cur = solve_light(light_, check_is_finer_ ? coarse_->mesh : mesh_);
+  w.ratio_prev = coarse_->ratio;
+  w.prev_spec = check_is_finer_ ? mesh_.spec() : coarse_->mesh.spec();
+  verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, w.ratio_prev, &w.prev}, w.third);
+  if (check_is_finer_) final_mesh_ = coarse_->mesh;
+  return w;
+}
+
+/// One refinement: a finer mesh sized from the estimate and the order, solved and judged; false
+/// where the refinement stops (rounding past the tolerance, no finer mesh, over the limits, or a
+/// finer solve that fails the back-end's own checks), said in a warning where it is a limit.
+bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, double& last_time) {
+  const ErrorEstimate& e = verdict_->first;
+  // Rounding beyond the tolerance: a finer mesh would only make it worse.
+  if (e.frequencies_solve > scene_.request.tolerance) return false;
+  const double worst = std::max(std::isnan(e.frequencies) ? 0.0 : e.frequencies, std::isnan(e.deflections) ? 0.0 : e.deflections);
+  const double factor = std::clamp(1.25 * std::pow(worst / scene_.request.tolerance, 1.0 / coarse_->order), 1.5, 4.0);
+  const std::optional<Discretization> next = solver_.finer_mesh(scene_, final_mesh_, std::isfinite(factor) ? factor : 4.0);
+  if (!next) return false;
+  const ResourceEstimate ne = solver_.estimate(scene_, *next, opt_);
+  const double calibration = last_estimate > 0 && last_time > last_estimate ? last_time / last_estimate : 1.0;
+  // The next light solve, then the whole request on it (about as dear, and more with an FRF).
+  const double predicted = 2.0 * ne.seconds * calibration;
+  if (ne.bytes > memory_limit_ || since_start() + predicted > opt_.max_time_s) {
+    estimate_warnings_.push_back(fmt::format(
+        "refinement stopped at mesh {}: the next, {}, is estimated at {} and {:.3g} s (after {:.3g} s), over the "
+        "limits (--max-memory, --max-time)",
+        final_mesh_.spec(), next->spec(), gigabytes(ne.bytes), predicted, since_start()));
+    return false;
+  }
+  const double ratio = static_cast<double>(next->counts[0]) / final_mesh_.counts[0];
+  Result trial = solve_light(light_, *next);
+  // A finer mesh whose solve fails the back-end's own checks is not taken: the mesh kept is the
+  // last one that passed them, with its estimate (and its not-converged verdict).
+  if (severity(trial.summary.status) >= severity(Status::NumericalIssue) &&
+      severity(w.cur.summary.status) < severity(Status::NumericalIssue)) {
+    estimate_warnings_.push_back(fmt::format("refinement stopped at mesh {}: the next, {}, failed the back-end's own "
+                                             "checks ({}: {})",
+                                             final_mesh_.spec(), next->spec(), to_string(trial.summary.status),
+                                             trial.summary.message));
+    return false;
+  }
+  w.r3 = w.third ? std::optional<Result>(std::move(w.r2)) : std::nullopt;
+  w.ratio3 = w.third ? w.third->ratio : kNotMeasured;
+  w.r2 = std::move(w.prev);
+  w.third = MeshSolve{w.prev_spec, w.ratio_prev, &w.r2};
+  w.prev = std::move(w.cur);
+  w.prev_spec = final_mesh_.spec();
+  w.ratio_prev = ratio;
+  w.cur = std::move(trial);
+  last_estimate = solver_.estimate(light_, *next, opt_).seconds;
+  last_time = w.cur.summary.total_time_s;
+  verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, ratio, &w.prev}, w.third);
+  final_mesh_ = *next;
+  return true;
+}
+
+/// The refinement's coarser solves, kept for the extrapolation (three or four meshes).
+void SolvePipeline::keep_refinement_solves(RefinementWindow& w) {
+  if (!w.third) return;
+  kept_.three = true;
+  kept_.ratio = w.ratio_prev;
+  kept_.ratio2 = w.third->ratio;
+  kept_.H = std::move(w.prev);
+  kept_.H2 = std::move(w.r2);
+  if (w.r3) {
+    kept_.four = true;
+    kept_.ratio3 = w.ratio3;
+    kept_.H4 = std::move(*w.r3);
+  }
+}
+
+/// The whole request on the mesh kept; what the back-end does not compute is said.
+void SolvePipeline::solve_request() {
+  auto& sum = result_.summary;
+  sum.mesh = final_mesh_.spec();
+  solver_.do_solve(scene_, final_mesh_, opt_, result_);
+  if (!missing_.empty()) {
+    std::string what;
+    for (const auto& m : missing_) what += (what.empty() ? "" : ", ") + m;
+    sum.warnings.push_back("not computed: " + what + (cap_.reason.empty() ? "" : " (" + cap_.reason + ")"));
+  }
+}
+
+/// The error estimate where the refinement gave none (a mesh given, or no refinement): the
+/// coarser meshes solved and judged against the result (and kept for the extrapolation).
+void SolvePipeline::estimate_error() {
+  auto& sum = result_.summary;
+  if (!(coarse_ && !verdict_ && severity(sum.status) < severity(Status::ResourceLimit))) {
+    if (!mesh_.counts.empty() && !opt_.estimate_error) sum.error_estimate.note = "not estimated (switched off by the caller)";
+    return;
+  }
+  const auto tc = Clock::now();
+  try {
+    Result cr = solve_light(light_, coarse_->mesh);
+    Result cr2;
+    std::optional<MeshSolve> third;
+    if (coarser2_) {
+      cr2 = solve_light(light_, coarser2_->mesh);
+      third = MeshSolve{coarser2_->mesh.spec(), coarser2_->ratio, &cr2};
+    }
+    verdict_ = judge_discretization(scene_, coarse_->order, result_, MeshSolve{coarse_->mesh.spec(), coarse_->ratio, &cr},
+                                    third, check_is_finer_);
+    for (const Result* c : {&std::as_const(cr), &std::as_const(cr2)})
+      if (c->summary.status != Status::Success && !(c == &cr2 && !coarser2_))
+        estimate_warnings_.push_back(fmt::format("the coarser mesh {} of the error estimate was {}: {}",
+                                                 c->summary.mesh, to_string(c->summary.status), c->summary.message));
+    if (third) {
+      kept_.three = true;
+      kept_.ratio = coarse_->ratio;
+      kept_.ratio2 = coarser2_->ratio;
+      kept_.H = std::move(cr);
+      kept_.H2 = std::move(cr2);
+      if (coarser3_)
+        if (std::optional<Result> cr3 = solve_optional(coarser3_->mesh)) {
+          kept_.four = true;
+          kept_.ratio3 = coarser3_->ratio;
+          kept_.H4 = std::move(*cr3);
+        }
+    }
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    sum.error_estimate.note = std::string("no estimate: the coarser mesh failed: ") + e.what();
+    sum.raise(Status::NotConverged, fmt::format("no discretization error estimate: the coarser mesh {} failed ({})",
+                                                coarse_->mesh.spec(), e.what()));
+  }
+  estimate_time_ += seconds_since(tc);
+}
+
+/// The verdict into the summary: the estimate, its provenance, and a not-converged status for
+/// what exceeds the tolerance. Without a mesh to compare with (exact segments: a one-prism dtfm
+/// beam), the solve's own bound is the estimate.
+void SolvePipeline::record_estimate() {
+  auto& sum = result_.summary;
+  if (verdict_) {
+    sum.error_estimate = verdict_->first;
+    if (!refined_note_.empty()) sum.error_estimate.note = refined_note_ + "; " + sum.error_estimate.note;
+    for (const auto& p : verdict_->second) sum.raise(Status::NotConverged, p);
+  } else if (wants_estimate_ && !coarse_) {
+    const double solve = sum.diagnostic("frequency_solve_error_bound");
+    if (std::isfinite(solve)) {
+      sum.error_estimate.frequencies = sum.error_estimate.frequencies_solve = solve;
+      sum.error_estimate.tolerance = scene_.request.tolerance;
+      sum.error_estimate.note = "no discretization error to estimate (exact segments): the solve's own bound";
+    }
+  }
+}
+
+/// Richardson extrapolation from the kept coarser solves (extrapolation.hpp).
+void SolvePipeline::extrapolate() {
+  auto& sum = result_.summary;
+  if (kept_.three && coarse_) {
+    const ExtrapolationMesh fourth{&kept_.H4, kept_.ratio3};
+    result_.extrapolated = richardson_extrapolate(result_, {&kept_.H, kept_.ratio}, {&kept_.H2, kept_.ratio2}, coarse_->order,
+                                                  coarse_->next_order, sum.diagnostic("frequency_solve_error_bound"),
+                                                  kept_.four ? &fourth : nullptr);
+  }
+  for (auto& w : estimate_warnings_) sum.warnings.push_back(std::move(w));
+  sum.timings_s.error_estimate = estimate_time_;
+}
+
+/// Nothing non-finite leaves a solver unflagged; every mode has a family; memory and time noted.
+void SolvePipeline::finish() {
+  auto& sum = result_.summary;
+  if (refused_) {
+    sum.total_time_s = since_start();
+    return;
+  }
+  bool finite = true;
+  for (double w : result_.frequencies_rad_s) finite = finite && std::isfinite(w);
+  for (const auto& d : result_.deflections)
+    for (double v : {d.u, d.v, d.w, d.theta_x, d.theta_y, d.theta_z}) finite = finite && std::isfinite(v);
+  for (const auto& f : result_.frf) finite = finite && std::isfinite(std::abs(f.receptance));
+  if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
+  if (result_.mode_families.size() != result_.frequencies_rad_s.size())
+    result_.mode_families.resize(result_.frequencies_rad_s.size(), ModeFamily::Unknown);
+  if (sum.diagnostic("estimated_memory_bytes") > 0) sum.set_diagnostic("process_peak_resident_bytes", peak_resident_bytes());
+  sum.total_time_s = since_start();
+}
+
+}  // namespace detail
+
+Result Solver::solve(const Scene& scene, const Discretization& mesh, const Options& options) const {
+  return detail::SolvePipeline(*this, scene, mesh, options).run();
+}
+
+}  // namespace modalbench
