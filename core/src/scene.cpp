@@ -68,6 +68,42 @@ Section rectangular_section(double width, double height) {
   return s;
 }
 
+Section circular_section(double d) { return tube_section(d, 0.0); }
+
+Section tube_section(double D, double d) {
+  const double pi = std::numbers::pi, D2 = D * D, d2 = d * d;
+  Section s{};
+  s.A = pi * (D2 - d2) / 4.0;
+  s.Iy = s.Iz = pi * (D2 * D2 - d2 * d2) / 64.0;
+  s.J = s.Ip = s.Iy + s.Iz;
+  return s;
+}
+
+Section section_properties(const Geometry& g, const SectionSpec& sp) {
+  switch (sp.shape) {
+    case SectionShape::Rectangle: return rectangular_section(g.width, g.height);
+    case SectionShape::Circle: return circular_section(sp.diameter);
+    case SectionShape::Tube: return tube_section(sp.diameter, sp.inner_diameter);
+    case SectionShape::General: return Section{sp.A, sp.Iy, sp.Iz, sp.J, sp.Iy + sp.Iz};
+  }
+  return rectangular_section(g.width, g.height);
+}
+
+double cowper_kappa_tube(double nu, double m) {
+  const double q = (1.0 + m * m) * (1.0 + m * m);
+  return 6.0 * (1.0 + nu) * q / ((7.0 + 6.0 * nu) * q + (20.0 + 12.0 * nu) * m * m);
+}
+
+std::string to_string(SectionShape s) {
+  switch (s) {
+    case SectionShape::Rectangle: return "rectangle";
+    case SectionShape::Circle: return "circle";
+    case SectionShape::Tube: return "tube";
+    case SectionShape::General: return "general";
+  }
+  return "?";
+}
+
 std::vector<std::array<double, 2>> Scene::shape_points() const {
   std::vector<std::array<double, 2>> p;
   if (!request.shapes) return p;

@@ -95,13 +95,95 @@ void read_scene_table(const Reader& r, const toml::table& root, Scene& s) {
   }
 }
 
-/// [geometry]: length, width, height.
+/// [geometry] section = { shape = ... }: a beam's cross-section (scene.hpp, SectionSpec).
+void read_section(const Reader& r, const toml::table& g, Scene& s) {
+  const std::string where = "geometry.section";
+  const auto& t = r.table(g, "geometry", "section");
+  const toml::node* shape_node = t.get("shape");
+  if (!shape_node || !shape_node->is_string())
+    r.fail(where + ".shape", "missing or not a string (rectangle, circle, tube or general)");
+  const std::string shape = shape_node->as_string()->get();
+  SectionSpec& sp = s.cross_section;
+  if (g.get("width") || g.get("height"))
+    r.fail("geometry.width", "give the section either as geometry.width and height (a rectangle) or as "
+                             "geometry.section, not both");
+  if (shape == "rectangle") {
+    r.only_keys(t, where, {"shape", "width", "height"});
+    sp.shape = SectionShape::Rectangle;
+    s.geometry.width = r.positive(t, where, "width");
+    s.geometry.height = r.positive(t, where, "height");
+  } else if (shape == "circle") {
+    r.only_keys(t, where, {"shape", "diameter"});
+    sp.shape = SectionShape::Circle;
+    sp.diameter = r.positive(t, where, "diameter");
+    s.geometry.width = s.geometry.height = sp.diameter;
+  } else if (shape == "tube") {
+    r.only_keys(t, where, {"shape", "outer_diameter", "inner_diameter"});
+    sp.shape = SectionShape::Tube;
+    sp.diameter = r.positive(t, where, "outer_diameter");
+    sp.inner_diameter = r.positive(t, where, "inner_diameter");
+    if (!(sp.inner_diameter < sp.diameter))
+      r.fail(where + ".inner_diameter", fmt::format("must be below outer_diameter ({} m; got {} m): a tube has a wall",
+                                                    sp.diameter, sp.inner_diameter));
+    s.geometry.width = s.geometry.height = sp.diameter;
+  } else if (shape == "general") {
+    r.only_keys(t, where, {"shape", "area", "Iy", "Iz", "J"});
+    sp.shape = SectionShape::General;
+    sp.A = r.positive(t, where, "area");
+    sp.Iy = r.positive(t, where, "Iy");
+    sp.Iz = r.positive(t, where, "Iz");
+    sp.J = r.positive(t, where, "J");
+    s.geometry.height = std::sqrt(12.0 * sp.Iy / sp.A);
+    s.geometry.width = sp.A / s.geometry.height;
+  } else {
+    r.fail(where + ".shape", "unknown shape '" + shape + "' (expected rectangle, circle, tube or general)");
+  }
+}
+
+/// [geometry]: length; a beam's section (width and height: a rectangle; or section = {...}); a
+/// plate's width and thickness (height).
 void read_geometry(const Reader& r, const toml::table& root, Scene& s) {
   const auto& g = r.table(root, "", "geometry");
-  r.only_keys(g, "geometry", {"length", "width", "height"});
+  r.only_keys(g, "geometry", {"length", "width", "height", "section"});
   s.geometry.length = r.positive(g, "geometry", "length");
+  if (g.get("section")) {
+    if (s.is_plate()) r.fail("geometry.section", "a plate has no cross-section: give its width and thickness (height)");
+    read_section(r, g, s);
+    return;
+  }
   s.geometry.width = r.positive(g, "geometry", "width");
   s.geometry.height = r.positive(g, "geometry", "height");
+}
+
+/// The shear coefficient where material.kappa is not given: Cowper's for circles and tubes (from
+/// nu), 5/6 for rectangles (as every scene so far was solved; Cowper's rectangle would be
+/// 10 (1 + nu) / (12 + 11 nu)); a general section has no shape to derive one from.
+void default_kappa(const Reader& r, Scene& s) {
+  const SectionSpec& sp = s.cross_section;
+  const double nu = s.material.nu;
+  switch (s.is_beam() ? sp.shape : SectionShape::Rectangle) {
+    case SectionShape::Circle:
+      s.material.kappa = cowper_kappa_tube(nu, 0.0);
+      s.notes.push_back(fmt::format("material.kappa not given: Cowper's shear coefficient of a circle, "
+                                    "6 (1 + nu) / (7 + 6 nu) = {:.6g}", s.material.kappa));
+      return;
+    case SectionShape::Tube:
+      s.material.kappa = cowper_kappa_tube(nu, sp.inner_diameter / sp.diameter);
+      s.notes.push_back(fmt::format("material.kappa not given: Cowper's shear coefficient of a tube (d/D = {:.4g}) "
+                                    "= {:.6g}", sp.inner_diameter / sp.diameter, s.material.kappa));
+      return;
+    case SectionShape::General:
+      if (s.theory == Theory::Timoshenko)
+        r.fail("material.kappa", "required for a general section under Timoshenko theory (no shape to derive "
+                                 "Cowper's shear coefficient from)");
+      s.material.kappa = 1.0;
+      s.notes.push_back("material.kappa not given: not used by the Euler-Bernoulli theory of this general section");
+      return;
+    case SectionShape::Rectangle:
+      break;
+  }
+  s.material.kappa = 5.0 / 6.0;
+  s.notes.push_back("material.kappa not given: shear coefficient 5/6");
 }
 
 /// [material]: E, G and/or nu, rho, kappa, loss_factor.
@@ -128,8 +210,7 @@ void read_material(const Reader& r, const toml::table& root, Scene& s) {
     if (!(*k > 0)) r.fail("material.kappa", fmt::format("must be > 0 (got {})", *k));
     s.material.kappa = *k;
   } else {
-    s.material.kappa = 5.0 / 6.0;
-    s.notes.push_back("material.kappa not given: shear coefficient 5/6");
+    default_kappa(r, s);
   }
   if (auto eta = r.opt_number(m, "material", "loss_factor")) {
     if (*eta < 0) r.fail("material.loss_factor", fmt::format("must be >= 0 (got {})", *eta));

@@ -16,6 +16,20 @@ void validate(const Scene& s) {
   finite_pos("geometry.length", s.geometry.length);
   finite_pos("geometry.width", s.geometry.width);
   finite_pos("geometry.height", s.geometry.height);
+  const SectionSpec& sec = s.cross_section;
+  if (s.is_plate() && sec.shape != SectionShape::Rectangle)
+    r.fail("geometry.section", "a plate has no cross-section: give its width and thickness (height)");
+  if (sec.shape == SectionShape::Circle || sec.shape == SectionShape::Tube)
+    finite_pos("geometry.section.diameter", sec.diameter);
+  if (sec.shape == SectionShape::Tube && !(sec.inner_diameter > 0 && sec.inner_diameter < sec.diameter))
+    r.fail("geometry.section.inner_diameter", fmt::format("must lie in (0, outer_diameter = {} m) (got {} m)",
+                                                          sec.diameter, sec.inner_diameter));
+  if (sec.shape == SectionShape::General) {
+    finite_pos("geometry.section.area", sec.A);
+    finite_pos("geometry.section.Iy", sec.Iy);
+    finite_pos("geometry.section.Iz", sec.Iz);
+    finite_pos("geometry.section.J", sec.J);
+  }
   finite_pos("material.E", s.material.E);
   finite_pos("material.G", s.material.G);
   finite_pos("material.rho", s.material.rho);

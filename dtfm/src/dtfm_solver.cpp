@@ -19,7 +19,8 @@ Capability DtfmSolver::supports(const Scene&) const {
 }
 
 Discretization DtfmSolver::default_mesh(const Scene& scene) const {
-  if (!scene.is_plate()) return Discretization::parse("2x2");
+  if (!scene.is_plate())
+    return Discretization::parse(scene.cross_section.shape == SectionShape::Rectangle ? "2x2" : "1x1");
   // Strips across the width: about 6 per half-wave across it among the requested modes.
   const int n_max = plate_half_waves(scene.geometry.length, scene.geometry.width, std::max(1, scene.request.modes)).second;
   return Discretization{{std::clamp(6 * (n_max + 1), 10, 400)}};
@@ -91,6 +92,7 @@ ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& 
 std::vector<Discretization> DtfmSolver::mesh_ladder(const Scene& scene) const {
   std::vector<const char*> specs;
   if (scene.is_plate()) specs = {"4", "7", "10", "20", "40"};
+  else if (scene.cross_section.shape != SectionShape::Rectangle) specs = {"1x1"};  // only rectangles are cut
   else if (scene.physics == Physics::Spatial) specs = {"1x1", "2x2", "4x4", "6x6"};  // 6 fields per prism
   else specs = {"1x1", "2x2", "4x4", "8x8"};
   std::vector<Discretization> out;

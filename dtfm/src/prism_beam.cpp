@@ -40,6 +40,11 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
   } else {
     active = {Ux, Uy, Uz, Rx, Ry, Rz};
   }
+  if (ny * nz > 1 && s.cross_section.shape != SectionShape::Rectangle)
+    throw InputError("command line", "--mesh",
+                     fmt::format("a {} section is one prism (1x1): dtfm cuts only rectangular sections into prisms "
+                                 "(got {}x{})",
+                                 to_string(s.cross_section.shape), ny_req, nz));
   mdl.length = L;
   mdl.ny = ny;
   mdl.nz = nz;
@@ -53,7 +58,8 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
 
   const bool eb = s.theory == Theory::EulerBernoulli;
   const bool paper = opt.layers == LayerModel::Paper;
-  const Section sec = rectangular_section(dy, dz);
+  // One prism is the whole section, whatever its shape; more cut a rectangle into rectangles.
+  const Section sec = ny * nz == 1 ? s.section() : rectangular_section(dy, dz);
   const double E = mat.E, G = mat.G, rho = mat.rho, kap = mat.kappa;
   // Shear of a prism in a plane across which the section is cut: the layers resolve the
   // shear-stress distribution there, so no shear coefficient (Consistent) or no prism shear

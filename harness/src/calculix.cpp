@@ -257,6 +257,8 @@ std::string calculix_version(const std::string& exe) {
 
 std::string calculix_unsupported_reason(const Scene& s) {
   if (s.is_beam()) {
+    if (s.cross_section.shape != SectionShape::Rectangle)
+      return "the 3D reference meshes rectangular sections only (got a " + to_string(s.cross_section.shape) + ")";
     for (const Support* e : {&s.x0, &s.xL})
       if (!(e->kind == "clamped" || e->kind == "free"))
         return "the 3D reference models beam ends clamped or free only (got '" + e->kind + "')";

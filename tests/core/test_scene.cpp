@@ -225,3 +225,81 @@ BOOST_AUTO_TEST_CASE(syntax_and_files) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// Beam sections other than rectangles: properties against their closed forms (independent of
+// the code: written out here), Cowper's shear coefficients, and every bad input named.
+BOOST_AUTO_TEST_SUITE(sections)
+
+const std::string kGeom = "[geometry]\nlength = 2.0\nwidth = 0.1\nheight = 0.2\n";
+
+std::string with_section(const std::string& section, std::string base = kBase) {
+  base = replace(base, kGeom, "[geometry]\nlength = 2.0\nsection = " + section + "\n");
+  return replace(base, "kappa = 0.85\n", "");
+}
+
+BOOST_AUTO_TEST_CASE(circle_tube_general_properties) {
+  const double pi = 3.14159265358979323846;
+  const Scene c = parse_scene(with_section("{ shape = \"circle\", diameter = 0.04 }"), "c.toml");
+  const Section sc = c.section();
+  BOOST_TEST(sc.A == pi * 0.04 * 0.04 / 4, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(sc.Iy == pi * std::pow(0.04, 4) / 64, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(sc.Iz == sc.Iy);
+  BOOST_TEST(sc.J == 2 * sc.Iy, boost::test_tools::tolerance(1e-14));  // J = Ip for a circle
+  BOOST_TEST(sc.Ip == sc.J);
+  BOOST_TEST(c.geometry.width == 0.04);
+  BOOST_TEST(c.geometry.height == 0.04);
+  // Cowper (1966), solid circle: 6 (1 + nu) / (7 + 6 nu) with nu = E / 2G - 1 = 0.25.
+  BOOST_TEST(c.material.kappa == 6 * 1.25 / (7 + 6 * 0.25), boost::test_tools::tolerance(1e-14));
+
+  const Scene t = parse_scene(with_section("{ shape = \"tube\", outer_diameter = 0.1, inner_diameter = 0.08 }"), "t.toml");
+  const Section st = t.section();
+  BOOST_TEST(st.A == pi * (0.01 - 0.0064) / 4, boost::test_tools::tolerance(1e-13));
+  BOOST_TEST(st.Iy == pi * (1e-4 - std::pow(0.08, 4)) / 64, boost::test_tools::tolerance(1e-13));
+  BOOST_TEST(st.J == pi * (1e-4 - std::pow(0.08, 4)) / 32, boost::test_tools::tolerance(1e-13));
+  // Cowper, hollow circle, m = 0.8.
+  const double m2 = 0.64, q = (1 + m2) * (1 + m2);
+  BOOST_TEST(t.material.kappa == 6 * 1.25 * q / ((7 + 6 * 0.25) * q + (20 + 12 * 0.25) * m2),
+             boost::test_tools::tolerance(1e-14));
+  // A thin wall tends to Cowper's thin-walled tube, 2 (1 + nu) / (4 + 3 nu).
+  BOOST_TEST(cowper_kappa_tube(0.25, 1.0) == 2 * 1.25 / (4 + 3 * 0.25), boost::test_tools::tolerance(1e-14));
+
+  const Scene g = parse_scene(
+      replace(with_section("{ shape = \"general\", area = 2e-3, Iy = 3e-6, Iz = 1e-6, J = 5e-7 }"), "[material]\n",
+              "[material]\nkappa = 0.5\n"),
+      "g.toml");
+  const Section sg = g.section();
+  BOOST_TEST(sg.A == 2e-3);
+  BOOST_TEST(sg.Iy == 3e-6);
+  BOOST_TEST(sg.Iz == 1e-6);
+  BOOST_TEST(sg.J == 5e-7);
+  BOOST_TEST(sg.Ip == 4e-6, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(g.material.kappa == 0.5);
+
+  // A rectangle written as a section is the shorthand's rectangle, kappa still 5/6 by default.
+  const Scene r = parse_scene(with_section("{ shape = \"rectangle\", width = 0.1, height = 0.2 }"), "r.toml");
+  const Section sr = r.section(), ref = rectangular_section(0.1, 0.2);
+  BOOST_TEST(sr.A == ref.A);
+  BOOST_TEST(sr.J == ref.J);
+  BOOST_TEST(r.material.kappa == 5.0 / 6.0);
+}
+
+BOOST_AUTO_TEST_CASE(bad_sections_are_named) {
+  expect_error(with_section("{ shape = \"tube\", outer_diameter = 0.1, inner_diameter = 0.1 }"),
+               "geometry.section.inner_diameter", "below outer_diameter");
+  expect_error(with_section("{ shape = \"tube\", outer_diameter = 0.1, inner_diameter = 0.2 }"),
+               "geometry.section.inner_diameter", "below outer_diameter");
+  expect_error(with_section("{ shape = \"tube\", outer_diameter = 0.1 }"), "geometry.section.inner_diameter", "missing");
+  expect_error(with_section("{ shape = \"hexagon\", diameter = 0.1 }"), "geometry.section.shape", "unknown shape");
+  expect_error(with_section("{ diameter = 0.1 }"), "geometry.section.shape", "missing");
+  expect_error(with_section("{ shape = \"circle\", diameter = -0.1 }"), "geometry.section.diameter", "> 0");
+  expect_error(with_section("{ shape = \"circle\", diameter = 0.1, width = 0.2 }"), "geometry.section.width",
+               "unknown key");
+  expect_error(replace(kBase, "height = 0.2\n", "height = 0.2\nsection = { shape = \"circle\", diameter = 0.1 }\n"),
+               "geometry.width", "not both");
+  expect_error(with_section("{ shape = \"general\", area = 2e-3, Iy = 3e-6, Iz = 1e-6, J = 5e-7 }"), "material.kappa",
+               "general section under Timoshenko");
+  expect_error(replace(kPlate, "height = 0.03\n", "height = 0.03\nsection = { shape = \"circle\", diameter = 0.1 }\n"),
+               "geometry.section", "plate has no cross-section");
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -80,6 +80,27 @@ struct Material {
 /// a x b plate (ordered by (m/a)^2 + (n/b)^2): what a mesh must resolve for k modes of any plate.
 std::pair<int, int> plate_half_waves(double a, double b, int k);
 
+/// The shape of a beam's cross-section (`[geometry] section = { shape = ... }`).
+enum class SectionShape {
+  Rectangle,  ///< width (y) x height (z): geometry.width, geometry.height (today's keys are its shorthand)
+  Circle,     ///< solid, diameter
+  Tube,       ///< outer_diameter, inner_diameter (thick or thin walled)
+  General,    ///< given A, Iy, Iz, J (the shape itself unknown)
+};
+std::string to_string(SectionShape);
+
+/// A beam's cross-section as written (Scene::cross_section). Circles and tubes also set
+/// geometry.width = height = the outer diameter, and a general section the sides of the rectangle
+/// with its A and Iy (height = sqrt(12 Iy / A), width = A / height): the section's extent, for
+/// sizes only (probes across it, slenderness), never for its properties, which Scene::section()
+/// computes from this.
+struct SectionSpec {
+  SectionShape shape = SectionShape::Rectangle;
+  double diameter = 0;        ///< circle: diameter; tube: outer diameter, m
+  double inner_diameter = 0;  ///< tube, m (0 < inner < outer)
+  double A = 0, Iy = 0, Iz = 0, J = 0;  ///< general: m^2, m^4, m^4, m^4
+};
+
 struct Geometry {
   double length = 0, width = 0, height = 0;
 };
@@ -93,6 +114,16 @@ struct Section {
   double Ip;  ///< polar second moment Iy + Iz (torsional rotary inertia per rho), m^4
 };
 Section rectangular_section(double width, double height);
+/// Solid circle of diameter d: A = pi d^2 / 4, Iy = Iz = pi d^4 / 64, J = Ip = pi d^4 / 32.
+Section circular_section(double d);
+/// Tube of outer and inner diameters D > d >= 0: the circle's formulas with D^n - d^n.
+Section tube_section(double D, double d);
+/// The section's properties (A, Iy, Iz, J, Ip = Iy + Iz) for any shape (a rectangle: g's width
+/// and height).
+Section section_properties(const Geometry& g, const SectionSpec& spec);
+/// Cowper's shear coefficient (J. Appl. Mech. 33, 1966) of a solid circle, 6 (1 + nu) / (7 + 6 nu),
+/// and of a tube with m = d / D, 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu) (1 + m^2)^2 + (20 + 12 nu) m^2).
+double cowper_kappa_tube(double nu, double m);
 
 /// A static point load. Beam: at x. Plate: at (x, y); only Fz is meaningful.
 struct PointLoad {
@@ -140,6 +171,7 @@ struct Scene {
   Physics physics = Physics::Bending;
   Theory theory = Theory::Timoshenko;
   Geometry geometry;
+  SectionSpec cross_section;  ///< a beam's `[geometry] section`; plates: a rectangle (width, thickness)
   Material material;
   /// Beam: ends x0, xL. Plate: edges x0, xL (normal x), y0, yB (normal y).
   Support x0, xL, y0, yB;
@@ -151,7 +183,7 @@ struct Scene {
 
   bool is_beam() const { return kind == SceneKind::Beam; }
   bool is_plate() const { return kind == SceneKind::Plate; }
-  Section section() const { return rectangular_section(geometry.width, geometry.height); }
+  Section section() const { return section_properties(geometry, cross_section); }
   /// Plate flexural rigidity D = E h^3 / (12 (1 - nu^2)), N*m.
   double plate_D() const;
   /// The points where shapes are sampled (request.shapes; empty without it): beam {x_i, 0},
