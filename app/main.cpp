@@ -40,6 +40,19 @@ std::string scenes_dir() {
   return MODALBENCH_SCENES_DIR;
 }
 
+/// A scene argument: a path as given where it names a file; otherwise a built-in scene's name
+/// (`paper_fixed_beam` or `paper_fixed_beam.toml`, as `modalbench list` shows them).
+std::string resolve_scene(const std::string& arg) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(arg, ec) || arg.find('/') != std::string::npos) return arg;
+  for (const std::string& name : {arg, arg + ".toml"}) {
+    const fs::path builtin = fs::path(scenes_dir()) / name;
+    if (fs::is_regular_file(builtin, ec)) return builtin.string();
+  }
+  return arg;  // load_scene names what is missing
+}
+
 /// Solves on a worker thread and waits at most twice --max-time: the estimates that refuse a
 /// request up front are fitted, not bounds, and an iteration can stall (Lanczos restarts). A solve
 /// still running then is abandoned: the process prints a resource-limit result and exits with 2.
@@ -77,14 +90,15 @@ mb::Result solve_within(const mb::Solver& solver, const mb::Scene& scene, const 
 int run_list(const mb::Registry& reg) {
   std::cout << "back-ends:\n";
   for (const auto* s : reg.all()) std::cout << fmt::format("  {:<14} {}\n", s->name(), s->description());
-  std::cout << fmt::format("scenes ({}):\n", scenes_dir());
+  std::cout << "built-in scenes (solve one by name: modalbench solve NAME --backend B):\n";
   for (const auto& f : mb::scene_files(scenes_dir())) {
+    const std::string name = std::filesystem::path(f).stem().string();
     try {
       const mb::Scene sc = mb::load_scene(f);
-      std::cout << fmt::format("  {:<40} {} {} ({})\n", std::filesystem::path(f).filename().string(), mb::to_string(sc.kind),
-                               mb::to_string(sc.physics), mb::to_string(sc.theory));
+      std::cout << fmt::format("  {:<32} {} {} ({})\n", name, mb::to_string(sc.kind), mb::to_string(sc.physics),
+                               mb::to_string(sc.theory));
     } catch (const mb::InputError& e) {
-      std::cout << fmt::format("  {:<40} INVALID: {}\n", std::filesystem::path(f).filename().string(), e.what());
+      std::cout << fmt::format("  {:<32} INVALID: {}\n", name, e.what());
     }
   }
   return 0;
@@ -188,7 +202,7 @@ int main(int argc, char** argv) {
   auto* solve = app.add_subcommand("solve", "solve one scene with one back-end");
   std::string scene_path, backend = "exact", mesh_spec, mass = "consistent";
   bool json = false;
-  solve->add_option("scene", scene_path, "scene file (TOML)")->required();
+  solve->add_option("scene", scene_path, "scene file (TOML), or a built-in scene's name (modalbench list)")->required();
   solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`)");
   solve->add_option("--mesh,-m", mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
   solve->add_option("--mass", mass, "consistent or lumped (back-ends that offer both)");
@@ -269,7 +283,7 @@ int main(int argc, char** argv) {
     if (*study) return run_study(study_spec, study_out, study_scheduler, study_workers);
     if (*opts) return run_options(reg, opts_backend);
     if (*solve) {
-      const mb::Scene scene = mb::load_scene(scene_path);
+      const mb::Scene scene = mb::load_scene(resolve_scene(scene_path));
       reg.check_backend_tables(scene);
       const mb::Solver* found = nullptr;
       try {
@@ -324,7 +338,7 @@ int main(int argc, char** argv) {
       if (cmp_scenes.empty())
         for (const auto& f : mb::scene_files(scenes_dir())) scenes.push_back(mb::load_scene(f));
       else
-        for (const auto& f : cmp_scenes) scenes.push_back(mb::load_scene(f));
+        for (const auto& f : cmp_scenes) scenes.push_back(mb::load_scene(resolve_scene(f)));
       for (const auto& sc : scenes) reg.check_backend_tables(sc);
       mb::CompareOptions opt;
       opt.budget_s = budget_s;

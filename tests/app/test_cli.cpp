@@ -136,9 +136,23 @@ BOOST_AUTO_TEST_CASE(bad_mesh_is_rejected) {
 BOOST_AUTO_TEST_CASE(list_names_scenes_and_backends) {
   const Run r = run("list");
   BOOST_TEST(r.status == 0);
-  BOOST_TEST(r.out.find("paper_fixed_beam.toml") != std::string::npos);
-  BOOST_TEST(r.out.find("paper_ss_plate.toml") != std::string::npos);
+  BOOST_TEST(r.out.find("paper_fixed_beam ") != std::string::npos);
+  BOOST_TEST(r.out.find("paper_ss_plate ") != std::string::npos);
   BOOST_TEST(r.out.find("exact") != std::string::npos);
+  // Names, not the build machine's folder.
+  BOOST_TEST(r.out.find(MODALBENCH_SCENES_DIR) == std::string::npos, r.out);
+}
+
+// The names `list` shows are what `solve` takes, with or without .toml.
+BOOST_AUTO_TEST_CASE(solve_takes_a_builtin_scene_name) {
+  for (const char* name : {"paper_fixed_beam", "paper_fixed_beam.toml"}) {
+    const Run r = run(std::string("solve ") + name + " --backend exact");
+    BOOST_TEST(r.status == 0, name << ": " << r.out);
+    BOOST_TEST(r.out.find("scene paper-fixed-beam") != std::string::npos, r.out);
+  }
+  const Run missing = run("solve no_such_scene --backend exact");
+  BOOST_TEST(missing.status == 2);
+  BOOST_TEST(missing.out.find("no_such_scene") != std::string::npos, missing.out);
 }
 
 BOOST_AUTO_TEST_CASE(compare_writes_a_report) {
