@@ -124,6 +124,34 @@ std::vector<int> Scene::shape_components() const {
   return {};
 }
 
+std::vector<PointLoad> Scene::all_point_loads() const {
+  std::vector<PointLoad> out = loads;
+  if (gravity)
+    for (const PointMass& m : masses) {
+      PointLoad p;
+      p.x = m.x;
+      p.Fx = m.mass * (*gravity)[0];
+      p.Fy = m.mass * (*gravity)[1];
+      p.Fz = m.mass * (*gravity)[2];
+      out.push_back(p);
+    }
+  return out;
+}
+
+std::vector<DistributedLoad> Scene::all_distributed_loads() const {
+  std::vector<DistributedLoad> out = is_beam() ? line_loads : pressures;
+  if (gravity) {
+    DistributedLoad w;
+    w.to = {geometry.length, geometry.width};
+    const double per = is_beam() ? material.rho * section().A : material.rho * geometry.height;
+    w.qx = {per * (*gravity)[0], per * (*gravity)[0]};
+    w.qy = {per * (*gravity)[1], per * (*gravity)[1]};
+    w.qz = {per * (*gravity)[2], per * (*gravity)[2]};
+    out.push_back(w);
+  }
+  return out;
+}
+
 double Scene::plate_D() const {
   const double h = geometry.height;
   return material.E * h * h * h / (12.0 * (1.0 - material.nu * material.nu));

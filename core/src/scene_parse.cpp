@@ -15,10 +15,9 @@ namespace {
 using scene_detail::check_range;
 using scene_detail::Reader;
 
-Support read_support(const Reader& r, const toml::table& supports, const std::string& key, const Scene& s) {
-  const std::string full = "supports." + key;
-  const toml::node* n = supports.get(key);
-  if (!n) r.fail(full, "missing key (each beam end x0, xL / plate edge x0, xL, y0, yB needs a support)");
+}  // namespace
+
+Support scene_detail::read_support_node(const Reader& r, const toml::node* n, const std::string& full, const Scene& s) {
   if (auto str = n->as_string()) {
     try {
       return Support::named(str->get());
@@ -44,6 +43,21 @@ Support read_support(const Reader& r, const toml::table& supports, const std::st
   if (allowed.count("axial")) sp.axial = spring("axial");
   if (allowed.count("torsional")) sp.torsional = spring("torsional");
   return sp;
+}
+
+namespace {
+
+using scene_detail::read_distributed_loads;
+using scene_detail::read_gravity;
+using scene_detail::read_masses;
+using scene_detail::read_point_supports;
+using scene_detail::read_support_node;
+
+Support read_support(const Reader& r, const toml::table& supports, const std::string& key, const Scene& s) {
+  const std::string full = "supports." + key;
+  const toml::node* n = supports.get(key);
+  if (!n) r.fail(full, "missing key (each beam end x0, xL / plate edge x0, xL, y0, yB needs a support)");
+  return read_support_node(r, n, full, s);
 }
 
 std::array<double, 2> read_point(const Reader& r, const toml::node& n, const std::string& key, const Scene& s) {
@@ -222,16 +236,17 @@ void read_material(const Reader& r, const toml::table& root, Scene& s) {
 void read_supports(const Reader& r, const toml::table& root, Scene& s) {
   const auto& sup = r.table(root, "", "supports");
   if (s.is_beam()) {
-    r.only_keys(sup, "supports", {"x0", "xL"});
+    r.only_keys(sup, "supports", {"x0", "xL", "points"});
     s.x0 = read_support(r, sup, "x0", s);
     s.xL = read_support(r, sup, "xL", s);
   } else {
-    r.only_keys(sup, "supports", {"x0", "xL", "y0", "yB"});
+    r.only_keys(sup, "supports", {"x0", "xL", "y0", "yB", "points"});
     s.x0 = read_support(r, sup, "x0", s);
     s.xL = read_support(r, sup, "xL", s);
     s.y0 = read_support(r, sup, "y0", s);
     s.yB = read_support(r, sup, "yB", s);
   }
+  read_point_supports(r, sup, s);
 }
 
 /// [[loads]]: point loads with the components the physics carries.
@@ -382,14 +397,18 @@ Scene parse_scene(std::string_view text, const std::string& source) {
     throw InputError(source, fmt::format("line {}", e.source().begin.line),
                      std::string("TOML syntax: ") + std::string(e.description()));
   }
-  r.only_keys(root, "", {"scene", "geometry", "material", "supports", "loads", "request", "backend"});
+  r.only_keys(root, "", {"scene", "geometry", "material", "supports", "masses", "loads", "line_loads", "pressures",
+                         "gravity", "request", "backend"});
   Scene s;
   s.source = source;
   read_scene_table(r, root, s);
   read_geometry(r, root, s);
   read_material(r, root, s);
   read_supports(r, root, s);
+  read_masses(r, root, s);
   read_loads(r, root, s);
+  read_distributed_loads(r, root, s);
+  read_gravity(r, root, s);
   read_request(r, root, s);
   read_backend_options(r, root, s);
   validate(s);

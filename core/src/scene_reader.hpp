@@ -98,4 +98,17 @@ inline void check_range(const Reader& r, const std::string& key, double v, doubl
   if (!(v >= lo && v <= hi)) r.fail(key, fmt::format("must lie in [{}, {}] (got {})", lo, hi, v));
 }
 
+/// A support given as a name or a table of springs (scene_parse.cpp), `full` its key.
+Support read_support_node(const Reader& r, const toml::node* n, const std::string& full, const Scene& s);
+
+// What a structure carries besides its ends (scene_parse_structure.cpp).
+/// [[supports.points]] of the [supports] table `sup`.
+void read_point_supports(const Reader& r, const toml::table& sup, Scene& s);
+/// [[masses]].
+void read_masses(const Reader& r, const toml::table& root, Scene& s);
+/// [[line_loads]] (beams) and [[pressures]] (plates).
+void read_distributed_loads(const Reader& r, const toml::table& root, Scene& s);
+/// [gravity].
+void read_gravity(const Reader& r, const toml::table& root, Scene& s);
+
 }  // namespace modalbench::scene_detail

@@ -52,6 +52,42 @@ void validate(const Scene& s) {
   } else if (s.theory != Theory::EulerBernoulli && s.theory != Theory::Timoshenko) {
     r.fail("scene.theory", "a beam's theory is euler-bernoulli or timoshenko");
   }
+  if (s.is_plate() && !s.point_supports.empty())
+    r.fail("supports.points", "point supports on plates are not modelled yet (beams only)");
+  if (s.is_plate() && !s.masses.empty()) r.fail("masses", "point masses on plates are not modelled yet (beams only)");
+  for (std::size_t i = 0; i < s.point_supports.size(); ++i) {
+    const std::string key = fmt::format("supports.points[{}]", i);
+    const double x = s.point_supports[i].x;
+    if (!(x > 0 && x < s.geometry.length)) r.fail(key + ".x", fmt::format("must lie in (0, {}) m", s.geometry.length));
+    if (i > 0 && !(x > s.point_supports[i - 1].x))
+      r.fail(key + ".x", "point supports must be distinct and in ascending x");
+    check_support(fmt::format("points[{}]", i), s.point_supports[i].support);
+  }
+  for (std::size_t i = 0; i < s.masses.size(); ++i) {
+    const std::string key = fmt::format("masses[{}]", i);
+    const PointMass& pm = s.masses[i];
+    check_range(r, key + ".x", pm.x, 0.0, s.geometry.length);
+    for (double v : {pm.mass, pm.Jx, pm.Jy, pm.Jz})
+      if (!(std::isfinite(v) && v >= 0)) r.fail(key, "mass and rotary inertias must be finite and >= 0");
+    if (i > 0 && pm.x < s.masses[i - 1].x) r.fail(key + ".x", "masses must be in ascending x");
+  }
+  const std::vector<DistributedLoad>& dist = s.is_beam() ? s.line_loads : s.pressures;
+  const std::string dist_key = s.is_beam() ? "line_loads" : "pressures";
+  if (!(s.is_beam() ? s.pressures : s.line_loads).empty())
+    r.fail(s.is_beam() ? "pressures" : "line_loads", "beams take line loads, plates pressures");
+  for (std::size_t i = 0; i < dist.size(); ++i) {
+    const DistributedLoad& q = dist[i];
+    const std::string key = fmt::format("{}[{}]", dist_key, i);
+    for (double v : {q.qx[0], q.qx[1], q.qy[0], q.qy[1], q.qz[0], q.qz[1], q.from[0], q.from[1], q.to[0], q.to[1]})
+      if (!std::isfinite(v)) r.fail(key, "values must be finite");
+    if (!(q.from[0] >= 0 && q.from[0] < q.to[0] && q.to[0] <= s.geometry.length))
+      r.fail(key, fmt::format("its x range must lie in [0, {}] m with from < to", s.geometry.length));
+    if (s.is_plate() && !(q.from[1] >= 0 && q.from[1] < q.to[1] && q.to[1] <= s.geometry.width))
+      r.fail(key, fmt::format("its y range must lie in [0, {}] m with from < to", s.geometry.width));
+  }
+  if (s.gravity)
+    for (double g : *s.gravity)
+      if (!std::isfinite(g)) r.fail("gravity.g", "values must be finite");
   for (std::size_t i = 0; i < s.loads.size(); ++i) {
     const auto& p = s.loads[i];
     for (double v : {p.x, p.y, p.Fx, p.Fy, p.Fz, p.Mx, p.My, p.Mz})

@@ -61,11 +61,20 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
     c.reason = "difference_eq solves beams only (a regular chain of Hermite beam elements); plates are not supported";
     return c;
   }
+  if (!s.point_supports.empty() || !s.masses.empty()) {
+    c.reason = "difference_eq does not yet model supports between the ends or point masses (its closed forms "
+               "cover end springs and nodal loads)";
+    return c;
+  }
   c.modes = c.statics = true;
   c.frf = false;
   // The model restrictions (Euler-Bernoulli, bending in x-z) are stated by do_solve in the
   // result's warnings; here only what is not computed at all.
   c.reason = "FRF is not implemented by difference_eq (modes and statics only)";
+  if (!s.line_loads.empty() || s.gravity) {
+    c.statics = false;
+    c.reason += "; distributed loads and gravity are not yet modelled (nodal forces and moments only)";
+  }
   return c;
 }
 

@@ -12,15 +12,24 @@
 
 namespace modalbench::dtfm {
 
-Capability DtfmSolver::supports(const Scene&) const {
+Capability DtfmSolver::supports(const Scene& s) const {
   Capability c;
+  if (!s.point_supports.empty() || !s.masses.empty()) {
+    c.reason = "dtfm does not yet model supports between the ends or point masses (its prisms run end to end)";
+    return c;
+  }
   c.modes = c.statics = c.frf = true;
+  if (!s.line_loads.empty() || !s.pressures.empty() || s.gravity) {
+    c.statics = false;
+    c.reason = "dtfm does not yet model distributed loads or gravity (point loads only)";
+  }
   return c;
 }
 
 Discretization DtfmSolver::default_mesh(const Scene& scene) const {
-  if (!scene.is_plate())
-    return Discretization::parse(scene.cross_section.shape == SectionShape::Rectangle ? "2x2" : "1x1");
+  // A beam: one prism, the beam of the scene's theory itself (no discretization error). A section
+  // cut into prisms (2x2, ...) tends to 3D elasticity, another model: a deliberate --mesh choice.
+  if (!scene.is_plate()) return Discretization::parse("1x1");
   // Strips across the width: about 6 per half-wave across it among the requested modes.
   const int n_max = plate_half_waves(scene.geometry.length, scene.geometry.width, std::max(1, scene.request.modes)).second;
   return Discretization{{std::clamp(6 * (n_max + 1), 10, 400)}};

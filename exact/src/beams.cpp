@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -27,24 +29,71 @@ Frequencies to_frequencies(const LineSpectrum& spec, const SliceStats& st) {
   return f;
 }
 
-bool bending_restrained(EndSprings l, EndSprings r) {
-  const bool some_t = l.translational > 0 || r.translational > 0;
-  const bool some_r = l.rotational > 0 || r.rotational > 0;
-  return (some_t && some_r) || (l.translational > 0 && r.translational > 0);
+/// Rigid translation and rotation in bending are restrained by two translational springs (at
+/// distinct points), or one and a rotational one.
+bool bending_restrained(EndSprings l, EndSprings r, const PointAttachments& points) {
+  int translational = (l.translational > 0) + (r.translational > 0), rotational = (l.rotational > 0) + (r.rotational > 0);
+  for (const PointAttachment& p : points) {
+    translational += p.springs.translational > 0;
+    rotational += p.springs.rotational > 0;
+  }
+  return translational >= 2 || (translational >= 1 && rotational >= 1);
+}
+
+bool bar_restrained(double k_left, double k_right, const PointAttachments& points) {
+  bool any = k_left > 0 || k_right > 0;
+  for (const PointAttachment& p : points) any = any || p.springs.translational > 0;
+  return any;
+}
+
+/// Makes the ends of the distributed loads (and, where there are any, the probes) nodes of the line.
+void add_load_nodes(LineSystem& sys, double L, const DistributedLineLoads& dist, const std::vector<double>& probes) {
+  if (dist.empty()) return;
+  for (const DistributedLineLoad& q : dist) {
+    sys.nodes_at.push_back(q.x_from / L);
+    sys.nodes_at.push_back(q.x_to / L);
+  }
+  for (double x : probes) sys.nodes_at.push_back(x / L);
+}
+
+/// The distributed loads as Gauss-point loads, 4 per segment they cover (exact: see beams.hpp);
+/// `unit(q)` is the nodal load vector of a point force q (the line's dimensionless units).
+void add_distributed(const LineSystem& sys, const AssembledLine& asmb, double L, const DistributedLineLoads& dist,
+                     const std::function<Eigen::VectorXd(double)>& unit, std::vector<LinePoint>& points,
+                     Eigen::VectorXd& f) {
+  static constexpr std::array<double, 4> node = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                                 0.8611363115940526};
+  static constexpr std::array<double, 4> weight = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                                   0.3478548451374538};
+  for (const DistributedLineLoad& q : dist) {
+    const double a = q.x_from / L, b = q.x_to / L;
+    for (std::size_t i = 0; i + 1 < asmb.xi.size(); ++i) {
+      const double lo = std::max(a, asmb.xi[i]), hi = std::min(b, asmb.xi[i + 1]);
+      if (!(hi > lo)) continue;
+      for (std::size_t g = 0; g < node.size(); ++g) {
+        const double xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * node[g];
+        const double t = (xi - a) / (b - a);
+        const double force = (q.q_from + (q.q_to - q.q_from) * t) * 0.5 * (hi - lo) * L * weight[g];  // N
+        points.push_back({xi, unit(force)});
+        add_point_load(sys, asmb, 0.0, points.back(), f);
+      }
+    }
+  }
 }
 
 }  // namespace
 
-Frequencies beam_bending_frequencies(const BeamBending& beam, EndSprings left, EndSprings right, int k) {
-  BendingLine line(beam, left, right);
+Frequencies beam_bending_frequencies(const BeamBending& beam, EndSprings left, EndSprings right, int k,
+                                     const PointAttachments& points) {
+  BendingLine line(beam, left, right, points);
   SliceStats st;
   // Scale: Omega = 1.
   const auto spec = lowest_eigenvalues(line.sys, k, 1.0 / line.lam_to_Omega2, &st);
   return to_frequencies(spec, st);
 }
 
-Frequencies bar_frequencies(const Bar& bar, double k_left, double k_right, int k) {
-  BarLine line(bar, k_left, k_right);
+Frequencies bar_frequencies(const Bar& bar, double k_left, double k_right, int k, const PointAttachments& points) {
+  BarLine line(bar, k_left, k_right, points);
   SliceStats st;
   const auto spec = lowest_eigenvalues(line.sys, k, 1.0 / line.lam_to_Omega2, &st);
   return to_frequencies(spec, st);
@@ -52,15 +101,18 @@ Frequencies bar_frequencies(const Bar& bar, double k_left, double k_right, int k
 
 std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings left, EndSprings right,
                                          const std::vector<LineLoad>& loads, const std::vector<double>& probes,
-                                         double moment_sign, long* unknowns) {
-  if (!bending_restrained(left, right))
+                                         double moment_sign, long* unknowns, const PointAttachments& supports,
+                                         const DistributedLineLoads& dist) {
+  if (!bending_restrained(left, right, supports))
     throw std::runtime_error(
-        "mechanism: the end supports do not restrain rigid translation and rotation in bending "
-        "(need translational springs at both ends, or a translational and a rotational one)");
-  BendingLine line(beam, left, right);
+        "mechanism: the supports do not restrain rigid translation and rotation in bending "
+        "(need translational springs at two points, or a translational and a rotational one)");
+  BendingLine line(beam, left, right, supports);
   const double L = beam.L;
-  // Loads and probes lie inside segments (exact fixed-end reactions and transfer): no node is
-  // made for them, so close points never make a short, stiff segment.
+  // Point loads and probes lie inside segments (exact fixed-end reactions and transfer): no node
+  // is made for them, so close points never make a short, stiff segment. Distributed loads make
+  // nodes of their ends and of the probes.
+  add_load_nodes(line.sys, L, dist, probes);
   AssembledLine asmb = assemble(line.sys, 0.0);
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes() * 2);
@@ -69,6 +121,9 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
     points.push_back({p.x / L, Eigen::Vector2d(p.force * L * L / beam.EI, moment_sign * p.moment * L / beam.EI)});
     add_point_load(line.sys, asmb, 0.0, points.back(), f);
   }
+  add_distributed(line.sys, asmb, L, dist, [&](double force) -> Eigen::VectorXd {
+    return Eigen::Vector2d(force * L * L / beam.EI, 0.0);
+  }, points, f);
   const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
   std::vector<BendingResponse> out;
   for (double x : probes) {
@@ -79,10 +134,12 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
 }
 
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
-                               const std::vector<double>& probes, long* unknowns) {
-  if (!(k_left > 0 || k_right > 0))
-    throw std::runtime_error("mechanism: neither end restrains the bar (axial or torsional rigid motion)");
-  BarLine line(bar, k_left, k_right);
+                               const std::vector<double>& probes, long* unknowns, const PointAttachments& supports,
+                               const DistributedLineLoads& dist) {
+  if (!bar_restrained(k_left, k_right, supports))
+    throw std::runtime_error("mechanism: no support restrains the bar (axial or torsional rigid motion)");
+  BarLine line(bar, k_left, k_right, supports);
+  add_load_nodes(line.sys, bar.L, dist, probes);
   AssembledLine asmb = assemble(line.sys, 0.0);
   note_unknowns(unknowns, asmb);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(asmb.K.nodes());
@@ -91,6 +148,9 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
     points.push_back({p.x / bar.L, Eigen::VectorXd::Constant(1, p.force * bar.L / bar.S)});
     add_point_load(line.sys, asmb, 0.0, points.back(), f);
   }
+  add_distributed(line.sys, asmb, bar.L, dist, [&](double force) -> Eigen::VectorXd {
+    return Eigen::VectorXd::Constant(1, force * bar.L / bar.S);
+  }, points, f);
   const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
   std::vector<double> out;
   for (double x : probes) out.push_back(displacement_at(line.sys, asmb, 0.0, d, points, x / bar.L)[0]);
@@ -98,8 +158,8 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
 }
 
 double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
-                       double omega, long* unknowns) {
-  BendingLine line(beam, left, right);
+                       double omega, long* unknowns, const PointAttachments& attachments) {
+  BendingLine line(beam, left, right, attachments);
   const double lam = omega * omega;
   AssembledLine asmb = assemble(line.sys, lam);
   note_unknowns(unknowns, asmb);

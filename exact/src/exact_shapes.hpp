@@ -15,10 +15,13 @@ struct LineShape {
   std::vector<double> disp, rot;
   double modal_mass = 0, participation = 0;
 };
-/// omega = 0: the rigid mode `rigid_index` of `rigid_count` (translation first, then rotation).
+/// omega = 0: the rigid mode `rigid_index` of `rigid_count` (translation first, then rotation
+/// about the centre of mass, point masses included). Point masses enter the modal mass and the
+/// participation; rigid modes with point supports are not modelled (std::runtime_error).
 LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings right, double omega, int rigid_index,
-                        int rigid_count, const std::vector<double>& xs);
-LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega, const std::vector<double>& xs);
+                        int rigid_count, const std::vector<double>& xs, const PointAttachments& points = {});
+LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega, const std::vector<double>& xs,
+                    const PointAttachments& points = {});
 
 /// A plate mode at points (x, y): w, theta_x = dw/dy, theta_y = -dw/dx; rho h int w^2 and
 /// rho h int w of these values.

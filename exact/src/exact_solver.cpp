@@ -59,6 +59,29 @@ Bar torsion_bar(const Scene& s) {
   return {s.material.G * sec.J, s.material.rho * sec.Ip, s.geometry.length};
 }
 
+/// The scene's point supports and masses as seen by one line: bending in x-z (w, theta_y: Jy),
+/// in x-y (v, theta_z: Jz), axial (u), torsion (theta_x: Jx).
+PointAttachments line_points(const Scene& s, ModeFamily line) {
+  PointAttachments out;
+  for (const PointSupport& p : s.point_supports) {
+    const Support& sp = p.support;
+    switch (line) {
+      case ModeFamily::Axial: out.push_back({p.x, {sp.axial, 0.0}, 0.0, 0.0}); break;
+      case ModeFamily::Torsion: out.push_back({p.x, {sp.torsional, 0.0}, 0.0, 0.0}); break;
+      default: out.push_back({p.x, {sp.translational, sp.rotational}, 0.0, 0.0}); break;
+    }
+  }
+  for (const PointMass& m : s.masses) {
+    switch (line) {
+      case ModeFamily::Axial: out.push_back({m.x, {0.0, 0.0}, m.mass, 0.0}); break;
+      case ModeFamily::Torsion: out.push_back({m.x, {0.0, 0.0}, m.Jx, 0.0}); break;
+      case ModeFamily::BendingXY: out.push_back({m.x, {0.0, 0.0}, m.mass, m.Jz}); break;
+      default: out.push_back({m.x, {0.0, 0.0}, m.mass, m.Jy}); break;
+    }
+  }
+  return out;
+}
+
 /// Count evaluations and the largest dynamic stiffness factorized.
 void note(Result& r, const Frequencies& f) {
   r.summary.set_diagnostic("count_evaluations", std::max(0.0, r.summary.diagnostic("count_evaluations")) +
@@ -73,18 +96,18 @@ void note(Result& r, const Frequencies& f) {
 
 void beam_modes(const Scene& s, ModeList& list, Result& r) {
   const int k = s.request.modes;
-  auto fxz = beam_bending_frequencies(bending_xz(s), bend(s.x0), bend(s.xL), k);
+  auto fxz = beam_bending_frequencies(bending_xz(s), bend(s.x0), bend(s.xL), k, line_points(s, ModeFamily::BendingXZ));
   list.add(fxz, ModeFamily::BendingXZ);
   note(r, fxz);
   if (s.physics != Physics::Bending) {
-    auto fa = bar_frequencies(axial_bar(s), s.x0.axial, s.xL.axial, k);
+    auto fa = bar_frequencies(axial_bar(s), s.x0.axial, s.xL.axial, k, line_points(s, ModeFamily::Axial));
     list.add(fa, ModeFamily::Axial);
     note(r, fa);
   }
   if (s.physics == Physics::Spatial) {
-    auto fxy = beam_bending_frequencies(bending_xy(s), bend(s.x0), bend(s.xL), k);
+    auto fxy = beam_bending_frequencies(bending_xy(s), bend(s.x0), bend(s.xL), k, line_points(s, ModeFamily::BendingXY));
     list.add(fxy, ModeFamily::BendingXY);
-    auto ft = bar_frequencies(torsion_bar(s), s.x0.torsional, s.xL.torsional, k);
+    auto ft = bar_frequencies(torsion_bar(s), s.x0.torsional, s.xL.torsional, k, line_points(s, ModeFamily::Torsion));
     list.add(ft, ModeFamily::Torsion);
     note(r, fxy);
     note(r, ft);
@@ -98,25 +121,34 @@ void beam_statics(const Scene& s, Result& r) {
   for (std::size_t i = 0; i < xs.size(); ++i) defl[i].position = {xs[i], 0.0};
   try {
     std::vector<LineLoad> lz, la, ly, lt;
-    for (auto& p : s.loads) {
+    for (auto& p : s.all_point_loads()) {
       lz.push_back({p.x, p.Fz, p.My});
       la.push_back({p.x, p.Fx, 0});
       ly.push_back({p.x, p.Fy, p.Mz});
       lt.push_back({p.x, p.Mx, 0});
     }
+    DistributedLineLoads dz, da, dy;
+    for (const DistributedLoad& q : s.all_distributed_loads()) {
+      auto add = [&](DistributedLineLoads& to, const std::array<double, 2>& v) {
+        if (v[0] != 0.0 || v[1] != 0.0) to.push_back({q.from[0], q.to[0], v[0], v[1]});
+      };
+      add(dz, q.qz);
+      add(da, q.qx);
+      add(dy, q.qy);
+    }
     long& n = r.summary.unknowns;
-    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n);
+    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n, line_points(s, ModeFamily::BendingXZ), dz);
     for (std::size_t i = 0; i < xs.size(); ++i) {
       defl[i].w = wz[i].w;
       defl[i].theta_y = wz[i].theta;
     }
     if (s.physics != Physics::Bending) {
-      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n);
+      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da);
       for (std::size_t i = 0; i < xs.size(); ++i) defl[i].u = u[i];
     }
     if (s.physics == Physics::Spatial) {
-      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n);
-      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n);
+      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy);
+      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion));
       for (std::size_t i = 0; i < xs.size(); ++i) {
         defl[i].v = wy[i].w;
         defl[i].theta_z = wy[i].theta;
@@ -138,12 +170,13 @@ void beam_frf(const Scene& s, Result& r) {
   if (s.material.loss_factor > 0)
     r.summary.warnings.push_back("exact FRF is undamped: material.loss_factor is not applied");
   const BeamBending b = bending_xz(s);
+  const PointAttachments frf_points = line_points(s, ModeFamily::BendingXZ);
   int skipped = 0;
   std::string reason;
   for (int i = 0; i < f.points; ++i) {
     const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
     try {
-      r.frf.push_back({w, beam_receptance(b, bend(s.x0), bend(s.xL), f.excite[0], f.observe[0], w, &r.summary.unknowns)});
+      r.frf.push_back({w, beam_receptance(b, bend(s.x0), bend(s.xL), f.excite[0], f.observe[0], w, &r.summary.unknowns, frf_points)});
     } catch (const std::runtime_error& e) {
       // On a natural frequency (or at 0 for a mechanism) K(omega) is singular: no finite receptance.
       // Anything else that fails is a numerical breakdown, and is said as such below.
@@ -208,11 +241,14 @@ void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
 void navier_statics(const Scene& s, int terms, Result& r) {
   const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
   std::vector<std::array<double, 3>> forces;
-  for (const auto& p : s.loads) forces.push_back({p.x, p.y, p.Fz});
+  for (const auto& p : s.all_point_loads()) forces.push_back({p.x, p.y, p.Fz});
+  std::vector<PressurePatch> patches;
+  for (const DistributedLoad& q : s.all_distributed_loads())
+    patches.push_back({q.from[0], q.to[0], q.from[1], q.to[1], q.qz[0]});
   double scale = 0, worst_tail = 0;
   for (const auto& p : s.request.probes) {
     double tail = 0;
-    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail);
+    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail, patches);
     Deflection d;
     d.position = p;
     d.w = w[0];
@@ -318,24 +354,26 @@ ModeShapes beam_shapes(const Scene& s, const std::vector<ModeEntry>& modes) {
     };
     switch (e.line) {
       case ModeFamily::BendingXZ:
-        ls = bending_shape(bending_xz(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs);
+        ls = bending_shape(bending_xz(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs,
+                           line_points(s, ModeFamily::BendingXZ));
         put(2, ls.disp, 1.0);
         put(4, ls.rot, -1.0);  // theta_y = -phi
         gamma[2] = ls.participation;
         break;
       case ModeFamily::BendingXY:
-        ls = bending_shape(bending_xy(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs);
+        ls = bending_shape(bending_xy(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs,
+                           line_points(s, ModeFamily::BendingXY));
         put(1, ls.disp, 1.0);
         put(5, ls.rot, 1.0);  // theta_z = +phi
         gamma[1] = ls.participation;
         break;
       case ModeFamily::Axial:
-        ls = bar_shape(axial_bar(s), s.x0.axial, s.xL.axial, e.omega, xs);
+        ls = bar_shape(axial_bar(s), s.x0.axial, s.xL.axial, e.omega, xs, line_points(s, ModeFamily::Axial));
         put(0, ls.disp, 1.0);
         gamma[0] = ls.participation;
         break;
       case ModeFamily::Torsion:
-        ls = bar_shape(torsion_bar(s), s.x0.torsional, s.xL.torsional, e.omega, xs);
+        ls = bar_shape(torsion_bar(s), s.x0.torsional, s.xL.torsional, e.omega, xs, line_points(s, ModeFamily::Torsion));
         put(3, ls.disp, 1.0);
         break;
       default: throw std::logic_error("exact beam mode without a line");

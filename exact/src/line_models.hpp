@@ -21,7 +21,7 @@ struct BendingLine {
   double lam_to_Omega2;  // rhoA L^4 / EI: Omega^2 = lambda * this
   LineSystem sys;
 
-  BendingLine(const BeamBending& b, EndSprings left, EndSprings right) {
+  BendingLine(const BeamBending& b, EndSprings left, EndSprings right, const PointAttachments& points = {}) {
     if (!(b.EI > 0 && b.rhoA > 0 && b.L > 0 && b.kGA > 0 && b.rhoI >= 0))
       throw std::invalid_argument("beam properties must be positive");
     s = std::isinf(b.kGA) ? 0.0 : b.EI / (b.kGA * b.L * b.L);
@@ -31,6 +31,11 @@ struct BendingLine {
     sys.m = 2;
     sys.left_spring = {scaled(left.translational, kt), scaled(left.rotational, kr)};
     sys.right_spring = {scaled(right.translational, kt), scaled(right.rotational, kr)};
+    // Nodal terms: forces scaled by EI / L^2 and EI / L, w = L w_bar, lambda = omega^2.
+    for (const PointAttachment& p : points)
+      sys.attachments.push_back({p.x / b.L,
+                                 {scaled(p.springs.translational, kt), scaled(p.springs.rotational, kr)},
+                                 {p.mass * kt, p.inertia * kr}});
     const double ss = s, rr = r, c = lam_to_Omega2;
     sys.state_matrix = [ss, rr, c](double lambda) {
       const double O2 = lambda * c;
@@ -54,13 +59,16 @@ struct BendingLine {
 struct BarLine {
   double lam_to_Omega2;
   LineSystem sys;
-  BarLine(const Bar& b, double k_left, double k_right) {
+  BarLine(const Bar& b, double k_left, double k_right, const PointAttachments& points = {}) {
     if (!(b.S > 0 && b.mu > 0 && b.L > 0)) throw std::invalid_argument("bar properties must be positive");
     lam_to_Omega2 = b.mu * b.L * b.L / b.S;
     const double f = b.L / b.S;
     sys.m = 1;
     sys.left_spring = {std::isinf(k_left) ? kInf : k_left * f};
     sys.right_spring = {std::isinf(k_right) ? kInf : k_right * f};
+    for (const PointAttachment& p : points)
+      sys.attachments.push_back({p.x / b.L, {std::isinf(p.springs.translational) ? kInf : p.springs.translational * f},
+                                 {p.mass * f}});
     const double c = lam_to_Omega2;
     sys.state_matrix = [c](double lambda) {
       Eigen::MatrixXd A(2, 2);

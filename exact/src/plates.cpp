@@ -55,8 +55,9 @@ std::complex<double> navier_receptance(double a, double b, double D, double rho_
 }
 
 std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
-                                    double x, double y, int terms, double* tail) {
-  // w = sum_mn W_mn sin(m pi x/a) sin(n pi y/b), W_mn = 4 F sin sin / (a b D pi^4 q^2).
+                                    double x, double y, int terms, double* tail, const std::vector<PressurePatch>& patches) {
+  // w = sum_mn W_mn sin(m pi x/a) sin(n pi y/b), W_mn = P_mn / (D pi^4 q^2), P_mn the load's
+  // coefficient: 4 F sin sin / (a b) for a point force, the patch's closed form (header).
   std::array<double, 3> out{0, 0, 0}, half{0, 0, 0};
   std::vector<double> sx(terms + 1), cx(terms + 1), sy(terms + 1), cy(terms + 1);
   for (int m = 1; m <= terms; ++m) {
@@ -65,23 +66,38 @@ std::array<double, 3> navier_static(double a, double b, double D, const std::vec
     sy[m] = std::sin(m * pi * y / b);
     cy[m] = std::cos(m * pi * y / b);
   }
+  // Each load as a product of an x factor (by m) and a y factor (by n).
+  struct Separable {
+    std::vector<double> fx, fy;
+  };
+  std::vector<Separable> loads;
   for (const auto& f : forces) {
-    std::vector<double> sfx(terms + 1), sfy(terms + 1);
+    Separable l{std::vector<double>(terms + 1), std::vector<double>(terms + 1)};
     for (int m = 1; m <= terms; ++m) {
-      sfx[m] = std::sin(m * pi * f[0] / a);
-      sfy[m] = std::sin(m * pi * f[1] / b);
+      l.fx[m] = 4.0 * f[2] * std::sin(m * pi * f[0] / a) / (a * b);
+      l.fy[m] = std::sin(m * pi * f[1] / b);
     }
+    loads.push_back(std::move(l));
+  }
+  for (const auto& p : patches) {
+    Separable l{std::vector<double>(terms + 1), std::vector<double>(terms + 1)};
+    for (int m = 1; m <= terms; ++m) {
+      l.fx[m] = 4.0 * p.p / (m * pi) * (std::cos(m * pi * p.x1 / a) - std::cos(m * pi * p.x2 / a));
+      l.fy[m] = (std::cos(m * pi * p.y1 / b) - std::cos(m * pi * p.y2 / b)) / (m * pi);
+    }
+    loads.push_back(std::move(l));
+  }
+  for (const auto& l : loads)
     for (int m = 1; m <= terms; ++m)
       for (int n = 1; n <= terms; ++n) {
         const double q = std::pow(m / a, 2) + std::pow(n / b, 2);
-        const double W = 4.0 * f[2] * sfx[m] * sfy[n] / (a * b * D * std::pow(pi, 4) * q * q);
+        const double W = l.fx[m] * l.fy[n] / (D * std::pow(pi, 4) * q * q);
         const std::array<double, 3> t = {W * sx[m] * sy[n], W * (m * pi / a) * cx[m] * sy[n], W * (n * pi / b) * sx[m] * cy[n]};
         for (int k = 0; k < 3; ++k) {
           out[k] += t[k];
           if (2 * m <= terms && 2 * n <= terms) half[k] += t[k];
         }
       }
-  }
   if (tail) *tail = std::abs(out[0] - half[0]);
   return out;
 }

@@ -5,6 +5,10 @@
 
 #include "exact_shapes.hpp"
 
+#include <functional>
+#include <stdexcept>
+#include <utility>
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -18,15 +22,45 @@ namespace {
 constexpr double pi = std::numbers::pi;
 }  // namespace
 
+namespace {
+
+/// The point masses' share of a mode: sum m disp^2 + J rot^2 into the modal mass, sum m disp into
+/// the participation (disp, rot: the mode at each attachment).
+void add_point_masses(const PointAttachments& points, const std::function<std::pair<double, double>(double)>& at,
+                      LineShape& out) {
+  for (const PointAttachment& p : points) {
+    if (p.mass == 0 && p.inertia == 0) continue;
+    const auto [disp, rot] = at(p.x);
+    out.modal_mass += p.mass * disp * disp + p.inertia * rot * rot;
+    out.participation += p.mass * disp;
+  }
+}
+
+bool any_spring(const PointAttachments& points) {
+  for (const PointAttachment& p : points)
+    if (p.springs.translational > 0 || p.springs.rotational > 0) return true;
+  return false;
+}
+
+}  // namespace
+
 LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings right, double omega, int rigid_index,
-                        int rigid_count, const std::vector<double>& xs) {
+                        int rigid_count, const std::vector<double>& xs, const PointAttachments& points) {
   LineShape out;
   const double L = beam.L;
   if (omega == 0.0) {
-    // Rigid-body modes of the free beam: a translation and/or a rotation (w' = phi: no shear).
+    if (any_spring(points))
+      throw std::runtime_error("exact: rigid-body mode shapes of a beam with point supports are not modelled");
+    // Rigid-body modes of the free beam: a translation and/or a rotation (w' = phi: no shear),
+    // the free pair's rotation about the centre of mass (M-orthogonal to the translation).
     const bool rotation_restrained = left.rotational > 0 || right.rotational > 0;
     bool rotation = false;
-    double pivot = 0.5 * L;
+    double total = beam.rhoA * L, moment = beam.rhoA * L * L / 2;
+    for (const PointAttachment& p : points) {
+      total += p.mass;
+      moment += p.mass * p.x;
+    }
+    double pivot = moment / total;
     if (rigid_count == 2) {
       rotation = rigid_index == 1;
     } else if (!rotation_restrained) {
@@ -44,9 +78,10 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     } else {
       out.modal_mass = out.participation = beam.rhoA * L;
     }
+    add_point_masses(points, [&](double x) { return std::pair{rotation ? x - pivot : 1.0, rotation ? 1.0 : 0.0}; }, out);
     return out;
   }
-  detail::BendingLine line(beam, left, right);
+  detail::BendingLine line(beam, left, right, points);
   for (double x : xs) line.sys.nodes_at.push_back(x / L);
   const LineMode mode(line.sys, omega * omega);
   for (double x : xs) {
@@ -58,19 +93,25 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     return beam.rhoA * d[0] * d[0] * L * L + beam.rhoI * d[1] * d[1];
   });
   out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return beam.rhoA * d[0] * L; });
+  add_point_masses(points, [&](double x) {
+    const Eigen::VectorXd d = mode.displacement(x / L);
+    return std::pair{d[0] * L, d[1]};
+  }, out);
   return out;
 }
 
-LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega, const std::vector<double>& xs) {
+LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega, const std::vector<double>& xs,
+                    const PointAttachments& points) {
   LineShape out;
   const double L = bar.L;
   if (omega == 0.0) {
     out.disp.assign(xs.size(), 1.0);
     out.rot.assign(xs.size(), 0.0);
     out.modal_mass = out.participation = bar.mu * L;
+    add_point_masses(points, [](double) { return std::pair{1.0, 0.0}; }, out);
     return out;
   }
-  detail::BarLine line(bar, k_left, k_right);
+  detail::BarLine line(bar, k_left, k_right, points);
   for (double x : xs) line.sys.nodes_at.push_back(x / L);
   const LineMode mode(line.sys, omega * omega);
   for (double x : xs) {
@@ -79,6 +120,7 @@ LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega,
   }
   out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return bar.mu * d[0] * d[0]; });
   out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return bar.mu * d[0]; });
+  add_point_masses(points, [&](double x) { return std::pair{mode.displacement(x / L)[0], 0.0}; }, out);
   return out;
 }
 

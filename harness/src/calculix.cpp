@@ -259,6 +259,8 @@ std::string calculix_unsupported_reason(const Scene& s) {
   if (s.is_beam()) {
     if (s.cross_section.shape != SectionShape::Rectangle)
       return "the 3D reference meshes rectangular sections only (got a " + to_string(s.cross_section.shape) + ")";
+    if (!s.point_supports.empty() || !s.masses.empty())
+      return "the 3D reference has no supports between the ends or point masses";
     for (const Support* e : {&s.x0, &s.xL})
       if (!(e->kind == "clamped" || e->kind == "free"))
         return "the 3D reference models beam ends clamped or free only (got '" + e->kind + "')";

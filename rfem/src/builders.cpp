@@ -119,6 +119,23 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
   };
   support(s.x0, 0, 0.0);
   support(s.xL, n, L);
+  // Supports between the ends: SDEs to ground at the point, attached to the RFE whose cell holds
+  // it (off its centre the attachment kinematics carry it: w(P) = w_j + w' (x - x_j), second order).
+  for (const PointSupport& p : s.point_supports)
+    support(p.support, std::clamp(static_cast<int>(std::lround(p.x / d)), 0, n), p.x);
+  // Point masses: at an RFE centre its own; between two, shared as linear interpolation weights
+  // (t and 1 - t: the kinetic energy's error is of order m h^2 w'^2, the model's own order).
+  for (const PointMass& pm : s.masses) {
+    const double u = std::clamp(pm.x / d, 0.0, static_cast<double>(n));
+    const int j0 = std::min(static_cast<int>(std::floor(u)), n);
+    const double t = u - j0;
+    for (const auto& [j, share] : {std::pair{j0, 1.0 - t}, std::pair{std::min(j0 + 1, n), t}}) {
+      if (share == 0.0) continue;
+      RigidElement& r = m.elements[static_cast<std::size_t>(j)];
+      r.mass += share * pm.mass;
+      r.inertia += share * Vector3d(pm.Jx, pm.Jy, pm.Jz);
+    }
+  }
 
   // Euler-Bernoulli by joint coordinates: the transverse displacements of the end points and joints.
   if (joints) {

@@ -76,17 +76,21 @@ std::vector<std::pair<int, double>> point_weights(const Model& m, const Eigen::V
 }
 
 Eigen::VectorXd point_load(const Model& m, const System& sys, const Eigen::Vector3d& P, const Vector6d& action) {
-  const auto hits = point_weights(m, P);
+  return point_loads(m, sys, {{P, action}});
+}
+
+Eigen::VectorXd point_loads(const Model& m, const System& sys, const std::vector<PointAction>& actions) {
   const int na = m.dofs_per_element();
   Eigen::VectorXd fq = Eigen::VectorXd::Zero(m.body_dofs());
-  for (auto [e, w] : hits) {
-    // On a grid the action goes to the centres with the interpolation weights (no lever arm:
-    // the interpolant, not a rigid attachment, carries the point); otherwise rigidly attached.
-    const Vector6d f = m.grid.empty()
-                           ? Vector6d(attachment(P - m.elements[static_cast<std::size_t>(e)].centre).transpose() * action * w)
-                           : Vector6d(action * w);
-    for (int k = 0; k < na; ++k) fq[static_cast<long>(e) * na + k] += f[m.active[static_cast<std::size_t>(k)]];
-  }
+  for (const auto& [P, action] : actions)
+    for (auto [e, w] : point_weights(m, P)) {
+      // On a grid the action goes to the centres with the interpolation weights (no lever arm:
+      // the interpolant, not a rigid attachment, carries the point); otherwise rigidly attached.
+      const Vector6d f = m.grid.empty()
+                             ? Vector6d(attachment(P - m.elements[static_cast<std::size_t>(e)].centre).transpose() * action * w)
+                             : Vector6d(action * w);
+      for (int k = 0; k < na; ++k) fq[static_cast<long>(e) * na + k] += f[m.active[static_cast<std::size_t>(k)]];
+    }
   return sys.T.transpose() * fq;
 }
 

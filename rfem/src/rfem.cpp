@@ -343,12 +343,14 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
 
 void RfemSolver::solve_statics(const Scene& s, const Model& model, const System& sys, Result& r) {
   auto& sum = r.summary;
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(sys.n());
-  for (const auto& p : s.loads) {
+  const std::vector<PointLoad> loads = s.all_point_loads();
+  std::vector<PointAction> actions = distributed_actions(model, s);
+  for (const auto& p : loads) {
     Vector6d act;
     act << p.Fx, p.Fy, p.Fz, p.Mx, p.My, p.Mz;
-    f += point_load(model, sys, point_of(s, {p.x, p.y}), act);
+    actions.emplace_back(point_of(s, {p.x, p.y}), act);
   }
+  const Eigen::VectorXd f = point_loads(model, sys, actions);
   const StaticSolution st = solve_static(model, sys, f);
   if (!st.ok) {
     sum.raise(st.mechanism ? Status::InvalidInput : Status::NumericalIssue,
@@ -365,7 +367,7 @@ void RfemSolver::solve_statics(const Scene& s, const Model& model, const System&
     for (int c = 0; c < 6; ++c) {
       v[c] = point_observer(model, sys, P, c).dot(st.z);
       // The singular part of the response to each load that interpolation misses.
-      for (const auto& l : s.loads) {
+      for (const auto& l : loads) {
         const double action[6] = {l.Fx, l.Fy, l.Fz, l.Mx, l.My, l.Mz};
         for (int a = 0; a < 6; ++a)
           if (action[a] != 0.0) v[c] += point_correction(model, P, c, point_of(s, {l.x, l.y}), a) * action[a];

@@ -655,10 +655,53 @@ def m_tolerance(s, rng):
     return f"request.tolerance = {req['tolerance']!r}"
 
 
+def m_structure(s, rng):
+    """The structure's own keys: a support between the ends, a point mass, a distributed load,
+    gravity, or a round section (beams); a pressure patch or gravity (plates)."""
+    L, B, _ = geo(s)
+    if sc_kind(s) != "beam":
+        what = rng.choice(["pressure", "gravity"])
+        if what == "pressure":
+            x0 = rng.uniform(0.0, 0.8)
+            s.setdefault("pressures", []).append({"p": rng.choice([-1000.0, 1e-12, 1e9]),
+                                                  "x": [x0 * L, (x0 + rng.uniform(0.05, 0.2)) * L]})
+        else:
+            s["gravity"] = {"g": [0.0, 0.0, rng.choice([-9.81, 1e3, -1e-9])]}
+        return f"plate {what}"
+    what = rng.choice(["point-support", "mass", "line-load", "gravity", "circle", "tube"])
+    if what == "point-support":
+        sup = table(s, "supports")
+        kind = rng.choice(["pinned", "clamped", "springs"])
+        entry = {"x": rng.choice([0.5, 0.3, 1e-9, 1 - 1e-9, 0.999]) * L}
+        if kind == "springs":
+            ref = material_scales(s)
+            for k in spring_keys(s):
+                entry[k] = _spring_value(rng, ref.get(k, 1.0))
+        else:
+            entry["kind"] = kind
+        sup.setdefault("points", []).append(entry)
+    elif what == "mass":
+        s.setdefault("masses", []).append({"x": rng.choice([0.0, 0.5, 1.0, 0.37]) * L,
+                                           "mass": rng.choice([1e-9, 2.0, 1e6]), "Jy": rng.choice([0.0, 1e-3, 1e3])})
+    elif what == "line-load":
+        a = rng.uniform(0.0, 0.9)
+        s.setdefault("line_loads", []).append({"qz": [rng.choice([-2000.0, 0.0, 1e9]), rng.choice([-2000.0, 5.0])],
+                                               "x_from": a * L, "x_to": min(1.0, a + rng.uniform(1e-6, 0.5)) * L})
+    elif what == "gravity":
+        s["gravity"] = {"g": [0.0, 0.0, rng.choice([-9.81, 1e4, -1e-9])]}
+    else:
+        g = table(s, "geometry")
+        d = min(num(g.pop("width", None), 0.05), num(g.pop("height", None), 0.05))
+        g["section"] = ({"shape": "circle", "diameter": d} if what == "circle" else
+                        {"shape": "tube", "outer_diameter": d, "inner_diameter": d * rng.choice([0.1, 0.9, 0.999])})
+    return f"structure: {what}"
+
+
 VALID_MUTATIONS = [
     (m_scale_geometry, 3), (m_slenderness, 3), (m_scale_material, 3), (m_set_nu, 2), (m_springs, 4),
     (m_switch_supports, 4), (m_close_points, 4), (m_frf, 3), (m_modes, 3), (m_shapes, 1), (m_loss, 1),
     (m_theory, 2), (m_backend_options, 1), (m_load_magnitude, 2), (m_drop_parts, 1), (m_tolerance, 1),
+    (m_structure, 3),
 ]
 
 # --- hostile

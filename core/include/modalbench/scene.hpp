@@ -132,6 +132,36 @@ struct PointLoad {
   double Mx = 0, My = 0, Mz = 0;  ///< N*m, right-handed about the axes
 };
 
+/// A support between a beam's ends (`[[supports.points]]`): the springs of `support` (a name or
+/// springs, as at the ends) acting at x on the axis.
+struct PointSupport {
+  double x = 0;
+  Support support;
+};
+
+/// A point mass on a beam's axis at x (`[[masses]]`), rigidly attached: mass, kg, and rotary
+/// inertias about axes through the point parallel to x, y, z, kg m^2 (Jx polar; Jy turns with the
+/// x-z bending rotation theta_y, Jz with theta_z).
+struct PointMass {
+  double x = 0;
+  double mass = 0;
+  double Jx = 0, Jy = 0, Jz = 0;
+};
+
+/// A distributed load. Beam (`[[line_loads]]`): over x in [from[0], to[0]], N/m along +x, +y, +z,
+/// each component varying linearly from its value at `from` (index 0) to its value at `to`
+/// (index 1). Plate (`[[pressures]]`): a uniform pressure qz, Pa along +z, over the patch
+/// [from[0], to[0]] x [from[1], to[1]].
+struct DistributedLoad {
+  std::array<double, 2> from{}, to{};
+  std::array<double, 2> qx{}, qy{}, qz{};
+  /// A beam component's intensity at x in [from[0], to[0]].
+  double at(const std::array<double, 2>& q, double x) const {
+    const double t = (x - from[0]) / (to[0] - from[0]);
+    return q[0] + (q[1] - q[0]) * t;
+  }
+};
+
 struct FrfRequest {
   std::array<double, 2> excite{};   ///< beam: {x, 0}; plate: {x, y}; unit Fz there
   std::array<double, 2> observe{};  ///< where w is observed
@@ -175,7 +205,14 @@ struct Scene {
   Material material;
   /// Beam: ends x0, xL. Plate: edges x0, xL (normal x), y0, yB (normal y).
   Support x0, xL, y0, yB;
+  std::vector<PointSupport> point_supports;  ///< beams: supports between the ends, by ascending x
+  std::vector<PointMass> masses;             ///< beams: point masses, by ascending x
   std::vector<PointLoad> loads;
+  std::vector<DistributedLoad> line_loads;  ///< beams
+  std::vector<DistributedLoad> pressures;   ///< plates
+  /// [gravity] g, m/s^2: the self-weight of the structure (rho A g per length of a beam, rho h g_z
+  /// per area of a plate) and of its point masses (m g at each).
+  std::optional<std::array<double, 3>> gravity;
   Request request;
   std::vector<std::string> notes;  ///< defaults applied, errata cited, etc.
   /// [backend.NAME] tables, by back-end name (names checked against the registry by the caller).
@@ -184,6 +221,11 @@ struct Scene {
   bool is_beam() const { return kind == SceneKind::Beam; }
   bool is_plate() const { return kind == SceneKind::Plate; }
   Section section() const { return section_properties(geometry, cross_section); }
+  /// Every point load: `loads` and, under gravity, the weight of each point mass (m g at its x).
+  std::vector<PointLoad> all_point_loads() const;
+  /// Every distributed load: `line_loads` (beam) or `pressures` (plate) and, under gravity, the
+  /// structure's own weight over the whole of it.
+  std::vector<DistributedLoad> all_distributed_loads() const;
   /// Plate flexural rigidity D = E h^3 / (12 (1 - nu^2)), N*m.
   double plate_D() const;
   /// The points where shapes are sampled (request.shapes; empty without it): beam {x_i, 0},

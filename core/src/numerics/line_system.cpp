@@ -32,6 +32,12 @@ std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
     if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("LineSystem: node outside [0, 1]");
     breaks.push_back(x);
   }
+  for (const LineAttachment& a : sys.attachments) {
+    if (!(a.xi >= 0.0 && a.xi <= 1.0)) throw std::invalid_argument("LineSystem: attachment outside [0, 1]");
+    if (static_cast<int>(a.spring.size()) != m || static_cast<int>(a.mass.size()) != m)
+      throw std::invalid_argument("LineSystem: an attachment needs m springs and m masses");
+    breaks.push_back(a.xi);
+  }
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   const double p = std::max(sys.max_wavenumber(lambda), 1e-12);
@@ -75,6 +81,7 @@ Rigid rigid_of(const LineSystem& sys) {
   const int m = sys.m;
   const Eigen::MatrixXd A0 = sys.state_matrix(0.0);
   if (!(A0.bottomLeftCorner(m, m).array() == 0.0).all()) return R;
+  if (!sys.attachments.empty()) return R;  // the split anchors end DOFs only
   R.Add = A0.topLeftCorner(m, m);
   struct Candidate {
     int end, dof;
@@ -217,6 +224,13 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
     else out.K.add_diagonal(0, j, sys.left_spring[j]);
     if (std::isinf(sys.right_spring[j])) out.K.hold(last, j);
     else out.K.add_diagonal(last, j, sys.right_spring[j]);
+  }
+  for (const LineAttachment& a : sys.attachments) {
+    const int node = out.node_at(a.xi);
+    for (int j = 0; j < m; ++j) {
+      if (std::isinf(a.spring[j])) out.K.hold(node, j);
+      else out.K.add_diagonal(node, j, a.spring[j] - lambda * a.mass[j]);
+    }
   }
   return out;
 }

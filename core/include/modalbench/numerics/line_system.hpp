@@ -25,6 +25,15 @@
 
 namespace modalbench {
 
+/// A point attachment inside the line (a support or a mass between the ends): at its node the
+/// dynamic stiffness gains spring[j] - lambda mass[j] on DOF j (dimensionless, as the end springs),
+/// and a DOF with an infinite spring is held. It has no internal modes, so the count stays exact.
+struct LineAttachment {
+  double xi = 0;              ///< in (0, 1); an end (0 or 1) is allowed too and adds to its spring
+  std::vector<double> spring; ///< per DOF, [0, inf]
+  std::vector<double> mass;   ///< per DOF, >= 0 (multiplies lambda = omega^2)
+};
+
 /// A line field problem in dimensionless form on [0, 1].
 struct LineSystem {
   int m = 0;
@@ -33,6 +42,9 @@ struct LineSystem {
   std::function<double(double lambda)> max_wavenumber;
   std::vector<double> left_spring, right_spring;  ///< per DOF, dimensionless, [0, inf]
   std::vector<double> nodes_at;  ///< interior positions in (0, 1) that must be nodes (loads, probes)
+  /// Supports and masses between (or at) the ends; each is a node. A line with attachments is
+  /// factored as it stands (the rigid-motion split of LineRigidity is for end-supported lines).
+  std::vector<LineAttachment> attachments;
 };
 
 /// The assembled K(lambda) with its node positions.

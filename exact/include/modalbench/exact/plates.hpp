@@ -30,10 +30,16 @@ std::vector<double> navier_frequencies(double a, double b, double D, double rho_
 /// bound on the truncation error.
 std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
                                        double xo, double yo, double omega, int terms, double* tail = nullptr);
-/// Static deflection of a simply supported Kirchhoff plate at (x, y) under point forces,
-/// with the slopes: returns {w, dw/dx, dw/dy}.
+/// A uniform pressure p (Pa, along +z) over the patch [x1, x2] x [y1, y2] of a plate.
+struct PressurePatch {
+  double x1 = 0, x2 = 0, y1 = 0, y2 = 0, p = 0;
+};
+/// Static deflection of a simply supported Kirchhoff plate at (x, y) under point forces {x, y, Fz}
+/// and pressure patches, with the slopes: returns {w, dw/dx, dw/dy}. A patch's load coefficient is
+/// (4 p / a b) (a / m pi) (cos(m pi x1/a) - cos(m pi x2/a)) (b / n pi) (cos(n pi y1/b) - cos(n pi y2/b)).
 std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
-                                    double x, double y, int terms, double* tail = nullptr);
+                                    double x, double y, int terms, double* tail = nullptr,
+                                    const std::vector<PressurePatch>& patches = {});
 
 /// Mindlin plate, all edges simply supported (hard), every branch.
 std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double E, double nu, double G,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "modalbench/rfem/model.hpp"
+#include "modalbench/scene.hpp"
 
 namespace modalbench::rfem {
 
@@ -53,6 +54,17 @@ std::vector<std::pair<int, double>> point_weights(const Model& model, const Eige
 /// on the centres around P (point_weights); without, D(r)' [F; M] on the RFE containing P (split
 /// equally on a cell boundary). Throws std::invalid_argument if P lies outside the body.
 Eigen::VectorXd point_load(const Model& model, const System& sys, const Eigen::Vector3d& P, const Vector6d& action);
+
+/// A point action [F; M] (global) at P.
+using PointAction = std::pair<Eigen::Vector3d, Vector6d>;
+/// The sum of point_load over many actions (one product with the basis at the end).
+Eigen::VectorXd point_loads(const Model& model, const System& sys, const std::vector<PointAction>& actions);
+/// The scene's distributed loads (line loads, pressures, self-weight: Scene::all_distributed_loads)
+/// as point actions at Gauss points: each load is cut at the grid's centres, where the (bi)linear
+/// weights of point_load are polynomials, and integrated there exactly (2 points per piece and
+/// direction: a linear load times a linear weight), so the load vector is the consistent one.
+/// Needs a centre grid (beams, plates).
+std::vector<PointAction> distributed_actions(const Model& model, const Scene& scene);
 
 /// Row r with r' z = component `comp` (0..5 of [u; theta]) of the motion of P: interpolated
 /// between the centres around P (centre grid), or rigidly attached to the RFE containing P
