@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -134,40 +135,68 @@ int run_options(const mb::Registry& reg, const std::string& only) {
   return 0;
 }
 
-void print_text(const mb::Scene& scene, const std::string& backend, const mb::Discretization& mesh,
-                const mb::Result& r) {
-  std::cout << fmt::format("scene {} | backend {} | mesh {} | {}\n", scene.name, backend, mesh.spec(),
-                           mb::to_string(r.summary.status));
-  if (!r.summary.message.empty()) std::cout << "  " << r.summary.message << "\n";
-  std::cout << "  options: " << r.summary.method_requested << "\n";
-  if (!r.summary.method.empty()) std::cout << "  method: " << r.summary.method << "\n";
-  for (const auto& f : r.summary.fallbacks) std::cout << "  fall-back: " << f << "\n";
+/// The mesh kept, and where it came from: "64 (given)", "256 (default)", "512 (default 256, refined)".
+std::string mesh_line(const mb::Discretization& asked, bool given, const mb::Result& r) {
+  const std::string kept = r.summary.mesh.empty() ? asked.spec() : r.summary.mesh;
+  if (kept == "-") return "-";
+  if (given) return kept + " (given)";
+  return kept == asked.spec() ? kept + " (default)" : fmt::format("{} (default {}, refined)", kept, asked.spec());
+}
+
+/// A probe's deflection in the components the scene carries.
+std::string probe_line(const mb::Scene& scene, const mb::Deflection& d) {
+  if (scene.is_plate())
+    return fmt::format("({:g}, {:g}) m: w = {:.8e} m, theta_x = {:.8e} rad, theta_y = {:.8e} rad", d.position[0],
+                       d.position[1], d.w, d.theta_x, d.theta_y);
+  std::string out = fmt::format("x = {:g} m: w = {:.8e} m, theta_y = {:.8e} rad", d.position[0], d.w, d.theta_y);
+  if (scene.physics != mb::Physics::Bending) out += fmt::format(", u = {:.8e} m", d.u);
+  if (scene.physics == mb::Physics::Spatial)
+    out += fmt::format(", v = {:.8e} m, theta_z = {:.8e} rad, theta_x = {:.8e} rad", d.v, d.theta_z, d.theta_x);
+  return out;
+}
+
+/// The result as text: status, the model solved and whether it is the scene's theory, the mesh
+/// kept, the numbers, the estimate; the method and options in words with --verbose.
+void print_text(const mb::Scene& scene, const std::string& backend, const mb::Discretization& mesh, bool mesh_given,
+                const mb::Result& r, bool verbose) {
+  const auto& sum = r.summary;
+  std::cout << fmt::format("scene {} | backend {} | mesh {} | {}\n", scene.name, backend, mesh_line(mesh, mesh_given, r),
+                           mb::to_string(sum.status));
+  if (!sum.model.empty())
+    std::cout << fmt::format("  model: {} ({} the scene's theory, {} {})\n", sum.model,
+                             sum.converges_to_scene_theory ? "is" : "NOT", mb::to_string(scene.theory),
+                             mb::to_string(scene.kind));
+  if (!sum.message.empty()) std::cout << "  " << sum.message << "\n";
+  if (verbose) {
+    std::cout << "  options: " << sum.method_requested << "\n";
+    if (!sum.method.empty()) std::cout << "  method: " << sum.method << "\n";
+  }
+  for (const auto& f : sum.fallbacks) std::cout << "  fall-back: " << f << "\n";
   for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i)
     std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  {:>14.8g} Hz  {}\n", i + 1, r.frequencies_rad_s[i],
                              r.frequencies_rad_s[i] / (2 * 3.141592653589793), mb::to_string(r.mode_families[i]));
-  for (const auto& d : r.deflections)
-    std::cout << fmt::format("  probe ({:g}, {:g}) m: w = {:.8e} m, theta_y = {:.8e} rad\n", d.position[0],
-                             d.position[1], d.w, d.theta_y);
+  for (const auto& d : r.deflections) std::cout << "  probe " << probe_line(scene, d) << "\n";
   if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
-  const auto& ee = r.summary.error_estimate;
-  if (std::isfinite(ee.frequencies) || std::isfinite(ee.deflections))
-    std::cout << fmt::format("  estimated discretization error: frequencies {:.2g}, deflections {:.2g} (relative)\n",
-                             ee.frequencies, ee.deflections);
+  const auto& ee = sum.error_estimate;
+  std::vector<std::string> est;
+  if (std::isfinite(ee.frequencies)) est.push_back(fmt::format("frequencies {:.2g}", ee.frequencies));
+  if (std::isfinite(ee.deflections)) est.push_back(fmt::format("deflections {:.2g} of the largest", ee.deflections));
+  if (!est.empty())
+    std::cout << fmt::format("  estimated discretization error: {} (relative)\n", fmt::join(est, ", "));
   const auto& xp = r.extrapolated;
   if (!xp.empty()) {
     std::cout << fmt::format("  Richardson extrapolation of meshes {} (order {:g} removed):\n", xp.meshes, xp.order);
     for (std::size_t i = 0; i < xp.frequencies_rad_s.size(); ++i)
       std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  estimated error {:.2g}\n", i + 1, xp.frequencies_rad_s[i],
                                xp.frequency_errors[i]);
-    for (const auto& d : xp.deflections)
-      std::cout << fmt::format("  probe ({:g}, {:g}) m: w = {:.8e} m\n", d.position[0], d.position[1], d.w);
+    for (const auto& d : xp.deflections) std::cout << "  probe " << probe_line(scene, d) << "\n";
     if (!xp.deflections.empty())
       std::cout << fmt::format("  deflections: estimated error {:.2g} of the largest\n", xp.deflection_error);
   }
-  if (!xp.note.empty()) std::cout << "  extrapolation: " << xp.note << "\n";
+  if (verbose && !xp.note.empty()) std::cout << "  extrapolation: " << xp.note << "\n";
   for (const auto& n : scene.notes) std::cout << "  note: " << n << "\n";
-  for (const auto& w : r.summary.warnings) std::cout << "  warning: " << w << "\n";
-  std::cout << fmt::format("  time {:.4g} s\n", r.summary.total_time_s);
+  for (const auto& w : sum.warnings) std::cout << "  warning: " << w << "\n";
+  std::cout << fmt::format("  time {:.4g} s{}\n", sum.total_time_s, verbose ? "" : " (--verbose: method and options)");
 }
 
 /// Replaces this process by the Python study driver (python3 -m modalbench study ...).
@@ -201,7 +230,7 @@ int main(int argc, char** argv) {
 
   auto* solve = app.add_subcommand("solve", "solve one scene with one back-end");
   std::string scene_path, backend = "exact", mesh_spec, mass = "consistent";
-  bool json = false;
+  bool json = false, verbose = false;
   solve->add_option("scene", scene_path, "scene file (TOML), or a built-in scene's name (modalbench list)")->required();
   solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`)");
   solve->add_option("--mesh,-m", mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
@@ -210,6 +239,7 @@ int main(int argc, char** argv) {
   solve->add_option("--option,-o", backend_options,
                     "back-end option KEY=VALUE (repeatable; over the scene's [backend.NAME]; see `modalbench options`)");
   solve->add_flag("--json", json, "print one JSON object (schema in README.md)");
+  solve->add_flag("--verbose,-v", verbose, "also print the method used and the options, in words");
   double max_memory_gb = 0, max_time_s = 600;
   auto positive = [](double hi, const char* unit) {
     return CLI::Validator(
@@ -312,7 +342,7 @@ int main(int argc, char** argv) {
           (json ? std::cerr : std::cout) << "wrote " << f << "\n";
       }
       if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
-      else print_text(scene, backend, mesh, r);
+      else print_text(scene, backend, mesh, !mesh_spec.empty(), r, verbose);
       if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported ||
           r.summary.status == mb::Status::ResourceLimit) {
         if (json) std::cerr << "modalbench: " << r.summary.message << "\n";

@@ -23,6 +23,9 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
                  {"used", r.summary.method},
                  {"fallbacks", r.summary.fallbacks},
                  {"converges_to_scene_theory", r.summary.converges_to_scene_theory}};
+  j["model"] = {{"solved", r.summary.model},
+                {"scene_theory", to_string(scene.theory)},
+                {"is_scene_theory", r.summary.converges_to_scene_theory}};
   j["unknowns"] = r.summary.unknowns;
   j["threads"] = r.summary.threads;
   j["max_backward_error"] = num(r.summary.max_backward_error);

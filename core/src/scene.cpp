@@ -1,5 +1,7 @@
 #include "modalbench/scene.hpp"
 
+#include <Eigen/Dense>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -148,6 +150,44 @@ std::vector<DistributedLoad> Scene::all_distributed_loads() const {
     w.qy = {per * (*gravity)[1], per * (*gravity)[1]};
     w.qz = {per * (*gravity)[2], per * (*gravity)[2]};
     out.push_back(w);
+  }
+  return out;
+}
+
+std::vector<std::string> free_plate_rigid_motions(const Scene& s) {
+  if (!s.is_plate()) return {};
+  // Rigid motions w = a + b x + c y: rows of the constraints the edges put on (a, b, c).
+  const double L = s.geometry.length, B = s.geometry.width;
+  Eigen::MatrixXd rows(0, 3);
+  auto add = [&](double a, double b, double c) {
+    rows.conservativeResize(rows.rows() + 1, 3);
+    rows.row(rows.rows() - 1) << a, b, c;
+  };
+  const std::array<std::pair<const Support*, double>, 2> xe = {{{&s.x0, 0.0}, {&s.xL, L}}};
+  const std::array<std::pair<const Support*, double>, 2> ye = {{{&s.y0, 0.0}, {&s.yB, B}}};
+  for (const auto& [sp, x] : xe) {
+    if (sp->translational > 0) add(1.0, x, 0.0), add(0.0, 0.0, 1.0);  // w = 0 along x = const
+    if (sp->rotational > 0) add(0.0, 1.0, 0.0);                      // dw/dx = 0 there
+  }
+  for (const auto& [sp, y] : ye) {
+    if (sp->translational > 0) add(1.0, 0.0, y), add(0.0, 1.0, 0.0);
+    if (sp->rotational > 0) add(0.0, 0.0, 1.0);
+  }
+  // The free motions span the null space of the rows; name its basis.
+  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(3, 3);
+  if (rows.rows() > 0) {
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(rows);
+    lu.setThreshold(1e-12);
+    N = lu.kernel();
+    if (lu.rank() == 3) return {};
+  }
+  static const char* names[3] = {"translation z", "rotation about y (w linear in x)", "rotation about x (w linear in y)"};
+  std::vector<std::string> out;
+  for (Eigen::Index j = 0; j < N.cols(); ++j) {
+    std::string parts;
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(N(k, j)) > 1e-12 * N.col(j).cwiseAbs().maxCoeff()) parts += (parts.empty() ? "" : " + ") + std::string(names[k]);
+    out.push_back(parts);
   }
   return out;
 }

@@ -175,29 +175,31 @@ void read_geometry(const Reader& r, const toml::table& root, Scene& s) {
 void default_kappa(const Reader& r, Scene& s) {
   const SectionSpec& sp = s.cross_section;
   const double nu = s.material.nu;
+  std::string note;
   switch (s.is_beam() ? sp.shape : SectionShape::Rectangle) {
     case SectionShape::Circle:
       s.material.kappa = cowper_kappa_tube(nu, 0.0);
-      s.notes.push_back(fmt::format("material.kappa not given: Cowper's shear coefficient of a circle, "
-                                    "6 (1 + nu) / (7 + 6 nu) = {:.6g}", s.material.kappa));
-      return;
+      note = fmt::format("Cowper's shear coefficient of a circle, 6 (1 + nu) / (7 + 6 nu) = {:.6g}", s.material.kappa);
+      break;
     case SectionShape::Tube:
       s.material.kappa = cowper_kappa_tube(nu, sp.inner_diameter / sp.diameter);
-      s.notes.push_back(fmt::format("material.kappa not given: Cowper's shear coefficient of a tube (d/D = {:.4g}) "
-                                    "= {:.6g}", sp.inner_diameter / sp.diameter, s.material.kappa));
-      return;
+      note = fmt::format("Cowper's shear coefficient of a tube (d/D = {:.4g}) = {:.6g}", sp.inner_diameter / sp.diameter,
+                         s.material.kappa);
+      break;
     case SectionShape::General:
       if (s.theory == Theory::Timoshenko)
         r.fail("material.kappa", "required for a general section under Timoshenko theory (no shape to derive "
                                  "Cowper's shear coefficient from)");
-      s.material.kappa = 1.0;
-      s.notes.push_back("material.kappa not given: not used by the Euler-Bernoulli theory of this general section");
-      return;
+      s.material.kappa = 1.0;  // not used by the Euler-Bernoulli theory
+      break;
     case SectionShape::Rectangle:
+      s.material.kappa = 5.0 / 6.0;
+      note = "shear coefficient 5/6";
       break;
   }
-  s.material.kappa = 5.0 / 6.0;
-  s.notes.push_back("material.kappa not given: shear coefficient 5/6");
+  // Said only where the theory has shear deformation: Euler-Bernoulli and Kirchhoff do not use it.
+  if (!note.empty() && (s.theory == Theory::Timoshenko || s.theory == Theory::Mindlin))
+    s.notes.push_back("material.kappa not given: " + note);
 }
 
 /// [material]: E, G and/or nu, rho, kappa, loss_factor.

@@ -478,6 +478,7 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
     throw InputError("command line", "--mesh", "the exact back-end has no mesh (got '" + mesh.spec() + "')");
   Timer timer;
   r.summary.converges_to_scene_theory = true;  // it is the scene's theory
+  r.summary.model = fmt::format("the exact {} {}", to_string(s.theory), to_string(s.kind));
   ModeList list;
   if (s.is_beam()) solve_beam(s, list, r, timer);
   else solve_plate(s, o, list, r, timer);

@@ -239,6 +239,10 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
   // Rigid elements tend to the scene's beam or plate theory; Table A1.1's springs as printed
   // (no Poisson coupling) tend to a plate with the mixed term 2D(1 - nu) instead (ERRATA 3).
   sum.converges_to_scene_theory = s.is_beam() || opt.get_bool("plate_bending_correction");
+  sum.model = sum.converges_to_scene_theory
+                  ? fmt::format("rigid finite elements, tending to the {} {}", to_string(s.theory), to_string(s.kind))
+                  : "rigid finite elements with Table A1.1's springs as printed, tending to a plate whose mixed "
+                    "term is 2D(1 - nu) (ERRATA 3), not the scene's theory";
   if (sys.n() == 0)
     throw InputError(mesh_source(s), "--mesh",
                      fmt::format("mesh {} is so coarse that the supports hold every DOF: refine it", mesh.spec()));

@@ -143,6 +143,29 @@ BOOST_AUTO_TEST_CASE(list_names_scenes_and_backends) {
   BOOST_TEST(r.out.find(MODALBENCH_SCENES_DIR) == std::string::npos, r.out);
 }
 
+// The text output says what was solved: the mesh kept and where it came from, the model and
+// whether it is the scene's theory, every probe component the scene carries; the method only
+// with --verbose; no estimate printed as nan.
+BOOST_AUTO_TEST_CASE(text_output_says_what_was_solved) {
+  const Run de = run("solve paper_fixed_beam --backend difference_eq");
+  BOOST_TEST(de.out.find("(default") != std::string::npos, de.out);
+  BOOST_TEST(de.out.find("model: a regular chain of Hermite Euler-Bernoulli elements") != std::string::npos, de.out);
+  BOOST_TEST(de.out.find("NOT the scene's theory, timoshenko beam") != std::string::npos, de.out);
+  BOOST_TEST(de.out.find("method:") == std::string::npos, de.out);
+  BOOST_TEST(de.out.find("nan") == std::string::npos, de.out);
+  const Run ex = run("solve paper_fixed_beam --backend exact --verbose");
+  BOOST_TEST(ex.out.find("model: the exact timoshenko beam (is the scene's theory") != std::string::npos, ex.out);
+  BOOST_TEST(ex.out.find("method:") != std::string::npos, ex.out);
+  const Run rf = run("solve paper_fixed_beam --backend rfem --mesh 64");
+  BOOST_TEST(rf.out.find("| mesh 64 (given) |") != std::string::npos, rf.out);
+  const Run pl = run("solve paper_ss_plate --backend exact");
+  BOOST_TEST(pl.out.find("theta_x = ") != std::string::npos, pl.out);
+  const Run j = run("solve paper_fixed_beam --backend dtfm --json", false);
+  const auto doc = nlohmann::json::parse(j.out);
+  BOOST_TEST(doc["model"]["is_scene_theory"] == true);
+  BOOST_TEST(doc["model"]["solved"].get<std::string>().find("one prism") != std::string::npos);
+}
+
 // The names `list` shows are what `solve` takes, with or without .toml.
 BOOST_AUTO_TEST_CASE(solve_takes_a_builtin_scene_name) {
   for (const char* name : {"paper_fixed_beam", "paper_fixed_beam.toml"}) {

@@ -107,7 +107,10 @@ BOOST_AUTO_TEST_CASE(plate_values_read) {
   BOOST_TEST(s.is_plate());
   BOOST_TEST(s.material.G == 2e11 / 2.6, boost::test_tools::tolerance(1e-12));
   BOOST_TEST(s.material.kappa == 5.0 / 6.0, boost::test_tools::tolerance(1e-15));
-  BOOST_TEST(!s.notes.empty());  // the kappa default is stated
+  // The kappa default is stated only where the theory uses it (Mindlin, not Kirchhoff).
+  BOOST_TEST(s.notes.empty());
+  const Scene mindlin = parse_scene(replace(kPlate, "theory = \"kirchhoff\"", "theory = \"mindlin\""), "ok.toml");
+  BOOST_TEST(!mindlin.notes.empty());
   BOOST_TEST(s.y0.rotational == kRigid);
   BOOST_TEST(s.yB.translational == 1e6);
   BOOST_TEST(s.request.probes[0][1] == 0.3);
@@ -303,3 +306,27 @@ BOOST_AUTO_TEST_CASE(bad_sections_are_named) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// A plate's rigid motions left free by its edges, from the supports' pattern alone.
+BOOST_AUTO_TEST_CASE(free_plate_rigid_motions_by_pattern) {
+  const Scene base = parse_scene(kPlate, "ok.toml");
+  auto with = [&](const char* x0, const char* xL, const char* y0, const char* yB) {
+    Scene s = base;
+    s.x0 = Support::named(x0);
+    s.xL = Support::named(xL);
+    s.y0 = Support::named(y0);
+    s.yB = Support::named(yB);
+    return free_plate_rigid_motions(s);
+  };
+  const auto guided = with("guided", "guided", "guided", "guided");
+  BOOST_TEST_REQUIRE(guided.size() == 1u);
+  BOOST_TEST(guided[0] == "translation z");
+  BOOST_TEST(with("free", "free", "free", "free").size() == 3u);
+  BOOST_TEST(with("pinned", "pinned", "pinned", "pinned").empty());
+  BOOST_TEST(with("clamped", "free", "free", "free").empty());  // a cantilever plate
+  BOOST_TEST(with("pinned", "pinned", "free", "free").empty());  // two opposite pinned edges
+  const auto one_pin = with("pinned", "free", "free", "free");  // turns about its pinned edge
+  BOOST_TEST_REQUIRE(one_pin.size() == 1u);
+  BOOST_TEST(one_pin[0] == "rotation about y (w linear in x)");
+  BOOST_TEST(free_plate_rigid_motions(parse_scene(kBase, "beam.toml")).empty());
+}

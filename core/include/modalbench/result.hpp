@@ -152,6 +152,10 @@ struct Summary {
   /// (a multi-prism section tends to 3D elasticity; an Euler-Bernoulli chain on a Timoshenko scene
   /// to Euler-Bernoulli; a 3D solid to 3D elasticity): its limit is then its own ladder's.
   bool converges_to_scene_theory = false;
+  /// The model this run solved, in words: what its numbers converge to ("the exact Timoshenko
+  /// beam", "rigid finite elements, tending to the Kirchhoff plate", ...). Empty where the
+  /// back-end did not get as far as building one.
+  std::string model;
   /// Each fall-back taken: what failed and what was used instead (empty: none).
   std::vector<std::string> fallbacks;
   /// Threads that worked at once (1, or 2 where a check overlaps the main solve).

@@ -236,6 +236,13 @@ struct Scene {
   std::vector<int> shape_components() const;
 };
 
+/// The rigid-body motions of a plate that its edge supports leave free, by name (translation z,
+/// rotation about x, rotation about y; several named as one combination where they are tied
+/// together), from the supports' pattern alone (no stiffness is compared: 1e-300 N/m restrains).
+/// An edge with a translational spring ties w along it; one with a rotational spring, the slope
+/// across it. Empty for beams and for restrained plates.
+std::vector<std::string> free_plate_rigid_motions(const Scene& scene);
+
 /// The largest scene file read (a scene is a few kB; anything this large is not one).
 inline constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
 /// Reads and validates a scene file: a regular file of at most kMaxSceneBytes. Throws InputError
