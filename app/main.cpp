@@ -163,9 +163,11 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   std::cout << fmt::format("scene {} | backend {} | mesh {} | {}\n", scene.name, backend, mesh_line(mesh, mesh_given, r),
                            mb::to_string(sum.status));
   if (!sum.model.empty())
-    std::cout << fmt::format("  model: {} ({} the scene's theory, {} {})\n", sum.model,
-                             sum.converges_to_scene_theory ? "is" : "NOT", mb::to_string(scene.theory),
-                             mb::to_string(scene.kind));
+    std::cout << fmt::format("  model: {} ({})\n", sum.model,
+                             sum.converges_to_scene_theory
+                                 ? fmt::format("the scene's theory, {} {}", mb::to_string(scene.theory), mb::to_string(scene.kind))
+                                 : fmt::format("NOT the scene's theory, {} {}: its distance to exact is model error",
+                                               mb::to_string(scene.theory), mb::to_string(scene.kind)));
   if (!sum.message.empty()) std::cout << "  " << sum.message << "\n";
   if (verbose) {
     std::cout << "  options: " << sum.method_requested << "\n";
@@ -176,6 +178,10 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
     std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  {:>14.8g} Hz  {}\n", i + 1, r.frequencies_rad_s[i],
                              r.frequencies_rad_s[i] / (2 * 3.141592653589793), mb::to_string(r.mode_families[i]));
   for (const auto& d : r.deflections) std::cout << "  probe " << probe_line(scene, d) << "\n";
+  for (const auto& rc : r.reactions)
+    std::cout << fmt::format("  reaction {} (x = {:g} m): F = [{:.6e}, {:.6e}, {:.6e}] N, M = [{:.6e}, {:.6e}, {:.6e}] N*m\n",
+                             rc.support, rc.position[0], rc.force[0], rc.force[1], rc.force[2], rc.moment[0],
+                             rc.moment[1], rc.moment[2]);
   if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
   const auto& ee = sum.error_estimate;
   std::vector<std::string> est;

@@ -34,6 +34,13 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
     freqs.push_back(num(r.frequencies_rad_s[i]));
     fams.push_back(to_string(r.mode_families[i]));
   }
+  json reactions = json::array();
+  for (const Reaction& rc : r.reactions)
+    reactions.push_back({{"support", rc.support},
+                         {"position", scene.is_beam() ? json::array({rc.position[0]}) : json::array({rc.position[0], rc.position[1]})},
+                         {"force_N", {num(rc.force[0]), num(rc.force[1]), num(rc.force[2])}},
+                         {"moment_N_m", {num(rc.moment[0]), num(rc.moment[1]), num(rc.moment[2])}}});
+  j["reactions"] = reactions;
   j["frequencies_rad_s"] = freqs;
   j["mode_families"] = fams;
   // One probe's deflection, in the components the scene carries (also for the extrapolated ones).

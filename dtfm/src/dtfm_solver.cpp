@@ -174,12 +174,11 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
   if (scene.is_beam())
     sum.model = sum.converges_to_scene_theory
                     ? fmt::format("one prism: the {} beam itself", to_string(scene.theory))
-                    : fmt::format("a {}x{} prism section, tending to 3D elasticity, not the {} beam", model.ny,
-                                  model.nz, to_string(scene.theory));
+                    : fmt::format("a {}x{} prism section, tending to 3D elasticity", model.ny, model.nz);
   else
     sum.model = sum.converges_to_scene_theory
                     ? fmt::format("prism strips, tending to the {} plate", to_string(scene.theory))
-                    : "prism strips with the paper's layer model, tending to that model, not the scene's plate theory";
+                    : "prism strips with the paper's layer model, tending to that model";
   sum.set_diagnostic("fields", model.m);
   if (options.mass == MassModel::Lumped)
     sum.warnings.push_back("--mass lumped does not apply: the prisms' mass is distributed (consistent) along x");

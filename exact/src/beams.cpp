@@ -102,7 +102,7 @@ Frequencies bar_frequencies(const Bar& bar, double k_left, double k_right, int k
 std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings left, EndSprings right,
                                          const std::vector<LineLoad>& loads, const std::vector<double>& probes,
                                          double moment_sign, long* unknowns, const PointAttachments& supports,
-                                         const DistributedLineLoads& dist) {
+                                         const DistributedLineLoads& dist, std::vector<SupportReaction>* reactions) {
   if (!bending_restrained(left, right, supports))
     throw std::runtime_error(
         "mechanism: the supports do not restrain rigid translation and rotation in bending "
@@ -125,6 +125,9 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
     return Eigen::Vector2d(force * L * L / beam.EI, 0.0);
   }, points, f);
   const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
+  if (reactions)
+    for (const LineReaction& r : line_reactions(line.sys, asmb, d, f))
+      reactions->push_back({r.xi * L, r.r[0] * beam.EI / (L * L), moment_sign * r.r[1] * beam.EI / L});
   std::vector<BendingResponse> out;
   for (double x : probes) {
     const Eigen::VectorXd u = displacement_at(line.sys, asmb, 0.0, d, points, x / L);
@@ -135,7 +138,7 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
 
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
                                const std::vector<double>& probes, long* unknowns, const PointAttachments& supports,
-                               const DistributedLineLoads& dist) {
+                               const DistributedLineLoads& dist, std::vector<SupportReaction>* reactions) {
   if (!bar_restrained(k_left, k_right, supports))
     throw std::runtime_error("mechanism: no support restrains the bar (axial or torsional rigid motion)");
   BarLine line(bar, k_left, k_right, supports);
@@ -152,6 +155,9 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
     return Eigen::VectorXd::Constant(1, force * bar.L / bar.S);
   }, points, f);
   const Eigen::VectorXd d = solve_line(line.sys, asmb, 0.0, f);
+  if (reactions)
+    for (const LineReaction& r : line_reactions(line.sys, asmb, d, f))
+      reactions->push_back({r.xi * bar.L, r.r[0] * bar.S / bar.L, 0.0});
   std::vector<double> out;
   for (double x : probes) out.push_back(displacement_at(line.sys, asmb, 0.0, d, points, x / bar.L)[0]);
   return out;

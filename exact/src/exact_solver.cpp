@@ -114,6 +114,35 @@ void beam_modes(const Scene& s, ModeList& list, Result& r) {
   }
 }
 
+/// The lines' support reactions gathered per support, in global axes (Result::reactions).
+class ReactionTable {
+ public:
+  explicit ReactionTable(const Scene& s) : s_(s) {}
+  /// Adds one line's reactions: its force to component `force` (0..2: x, y, z), its moment (if
+  /// any) to `moment` (0..2), -1 where the line has none.
+  void add(const std::vector<SupportReaction>& rs, int force, int moment) {
+    for (const SupportReaction& r : rs) {
+      Reaction& e = at(r.x);
+      if (force >= 0) e.force[static_cast<std::size_t>(force)] += r.force;
+      if (moment >= 0) e.moment[static_cast<std::size_t>(moment)] += r.moment;
+    }
+  }
+  std::vector<Reaction> take() { return std::move(out_); }
+
+ private:
+  Reaction& at(double x) {
+    for (Reaction& e : out_)
+      if (e.position[0] == x) return e;
+    std::string name = x == 0.0 ? "x0" : x == s_.geometry.length ? "xL" : fmt::format("x = {:g} m", x);
+    for (std::size_t i = 0; i < s_.point_supports.size(); ++i)
+      if (std::abs(s_.point_supports[i].x - x) <= 1e-12 * s_.geometry.length) name = fmt::format("points[{}]", i);
+    out_.push_back({name, {x, 0.0}, {}, {}});
+    return out_.back();
+  }
+  const Scene& s_;
+  std::vector<Reaction> out_;
+};
+
 void beam_statics(const Scene& s, Result& r) {
   std::vector<double> xs;
   for (auto& p : s.request.probes) xs.push_back(p[0]);
@@ -137,18 +166,19 @@ void beam_statics(const Scene& s, Result& r) {
       add(dy, q.qy);
     }
     long& n = r.summary.unknowns;
-    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n, line_points(s, ModeFamily::BendingXZ), dz);
+    std::vector<SupportReaction> rz, ra, ry, rt;
+    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n, line_points(s, ModeFamily::BendingXZ), dz, &rz);
     for (std::size_t i = 0; i < xs.size(); ++i) {
       defl[i].w = wz[i].w;
       defl[i].theta_y = wz[i].theta;
     }
     if (s.physics != Physics::Bending) {
-      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da);
+      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da, &ra);
       for (std::size_t i = 0; i < xs.size(); ++i) defl[i].u = u[i];
     }
     if (s.physics == Physics::Spatial) {
-      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy);
-      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion));
+      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy, &ry);
+      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt);
       for (std::size_t i = 0; i < xs.size(); ++i) {
         defl[i].v = wy[i].w;
         defl[i].theta_z = wy[i].theta;
@@ -156,6 +186,15 @@ void beam_statics(const Scene& s, Result& r) {
       }
     }
     r.deflections = defl;
+    // Bending in x-z: Fz and My (the line's moment is My already, moment_sign applied); in x-y:
+    // Fy and Mz; the bars: Fx and Mx.
+    ReactionTable table(s);
+    table.add(rz, 2, 1);
+    table.add(ra, 0, -1);
+    table.add(ry, 1, 2);
+    for (SupportReaction& t : rt) t.moment = std::exchange(t.force, 0.0);  // a torsion bar's "force" is Mx
+    table.add(rt, -1, 0);
+    r.reactions = table.take();
   } catch (const std::runtime_error& e) {
     // Only a mechanism is the input's fault; any other failure is a numerical breakdown.
     if (std::string(e.what()).rfind("mechanism", 0) == 0)

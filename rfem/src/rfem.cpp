@@ -242,7 +242,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
   sum.model = sum.converges_to_scene_theory
                   ? fmt::format("rigid finite elements, tending to the {} {}", to_string(s.theory), to_string(s.kind))
                   : "rigid finite elements with Table A1.1's springs as printed, tending to a plate whose mixed "
-                    "term is 2D(1 - nu) (ERRATA 3), not the scene's theory";
+                    "term is 2D(1 - nu) (ERRATA 3)";
   if (sys.n() == 0)
     throw InputError(mesh_source(s), "--mesh",
                      fmt::format("mesh {} is so coarse that the supports hold every DOF: refine it", mesh.spec()));

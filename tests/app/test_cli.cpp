@@ -154,10 +154,12 @@ BOOST_AUTO_TEST_CASE(text_output_says_what_was_solved) {
   BOOST_TEST(de.out.find("method:") == std::string::npos, de.out);
   BOOST_TEST(de.out.find("nan") == std::string::npos, de.out);
   const Run ex = run("solve paper_fixed_beam --backend exact --verbose");
-  BOOST_TEST(ex.out.find("model: the exact timoshenko beam (is the scene's theory") != std::string::npos, ex.out);
+  BOOST_TEST(ex.out.find("model: the exact timoshenko beam (the scene's theory") != std::string::npos, ex.out);
   BOOST_TEST(ex.out.find("method:") != std::string::npos, ex.out);
   const Run rf = run("solve paper_fixed_beam --backend rfem --mesh 64");
   BOOST_TEST(rf.out.find("| mesh 64 (given) |") != std::string::npos, rf.out);
+  const Run ts = run("solve two_span_beam --backend exact");
+  BOOST_TEST(ts.out.find("reaction points[0] (x = 10 m)") != std::string::npos, ts.out);
   const Run pl = run("solve paper_ss_plate --backend exact");
   BOOST_TEST(pl.out.find("theta_x = ") != std::string::npos, pl.out);
   const Run j = run("solve paper_fixed_beam --backend dtfm --json", false);

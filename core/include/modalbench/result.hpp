@@ -36,6 +36,15 @@ struct Deflection {
   double theta_x = 0, theta_y = 0, theta_z = 0;  ///< rad, right-handed about the axes
 };
 
+/// What one support (an end or edge, or a support between them) exerts on the structure under the
+/// static loads, in global axes: force (N) and moment (N*m) at its point. With the applied loads
+/// they balance: the sum of forces and of moments (about any point) is zero.
+struct Reaction {
+  std::string support;               ///< "x0", "xL", "points[0]", ...
+  std::array<double, 2> position{};  ///< beam: {x, 0}, m
+  std::array<double, 3> force{}, moment{};
+};
+
 struct FrfSample {
   double omega_rad_s = 0;
   std::complex<double> receptance;  ///< w(observe) / Fz(excite), m/N
@@ -197,6 +206,8 @@ struct Result {
   std::vector<double> frequencies_rad_s;  ///< ascending, repeated ones repeated
   std::vector<ModeFamily> mode_families;  ///< parallel to frequencies_rad_s
   std::vector<Deflection> deflections;    ///< one per requested probe
+  /// Static support reactions (beams, `exact`): one per support with a spring or a hold.
+  std::vector<Reaction> reactions;
   std::vector<FrfSample> frf;
   ModeShapes mode_shapes;  ///< when the scene asks for them (request.shapes)
   Extrapolation extrapolated;  ///< Richardson values from the error estimate's meshes (may be empty)

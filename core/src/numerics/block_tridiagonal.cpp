@@ -24,6 +24,22 @@ void BlockTridiagonal::add_segment(int i, const Eigen::MatrixXd& k) {
   lower_[i] += k.bottomLeftCorner(m_, m_);
 }
 
+Eigen::VectorXd BlockTridiagonal::multiply(const Eigen::VectorXd& d) const {
+  const int n = nodes();
+  if (d.size() != static_cast<Eigen::Index>(n) * m_) throw std::invalid_argument("vector has the wrong size");
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(d.size());
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Index a = static_cast<Eigen::Index>(i) * m_;
+    out.segment(a, m_) += diag_[static_cast<std::size_t>(i)] * d.segment(a, m_);
+    if (i + 1 < n) {
+      const Eigen::MatrixXd& L = lower_[static_cast<std::size_t>(i)];  // block (i + 1, i)
+      out.segment(a + m_, m_) += L * d.segment(a, m_);
+      out.segment(a, m_) += L.transpose() * d.segment(a + m_, m_);
+    }
+  }
+  return out;
+}
+
 std::vector<int> BlockTridiagonal::free_index(int node) const {
   std::vector<int> idx;
   for (int j = 0; j < m_; ++j)

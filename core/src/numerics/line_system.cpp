@@ -235,6 +235,30 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
   return out;
 }
 
+std::vector<LineReaction> line_reactions(const LineSystem& sys, const AssembledLine& asmb, const Eigen::VectorXd& d,
+                                         const Eigen::VectorXd& f) {
+  const int m = sys.m;
+  const Eigen::VectorXd residual = asmb.K.multiply(d) - f;
+  auto at = [&](double xi, const std::vector<double>& spring) {
+    const int node = asmb.node_at(xi);
+    LineReaction r{xi, Eigen::VectorXd::Zero(m)};
+    for (int j = 0; j < m; ++j) {
+      const Eigen::Index k = static_cast<Eigen::Index>(node) * m + j;
+      r.r[j] = std::isinf(spring[static_cast<std::size_t>(j)]) ? residual[k] : -spring[static_cast<std::size_t>(j)] * d[k];
+    }
+    return r;
+  };
+  auto any = [](const std::vector<double>& spring) {
+    return std::any_of(spring.begin(), spring.end(), [](double k) { return k != 0.0; });
+  };
+  std::vector<LineReaction> out;
+  if (any(sys.left_spring)) out.push_back(at(0.0, sys.left_spring));
+  if (any(sys.right_spring)) out.push_back(at(1.0, sys.right_spring));
+  for (const LineAttachment& a : sys.attachments)
+    if (any(a.spring)) out.push_back(at(a.xi, a.spring));
+  return out;
+}
+
 int count_below(const LineSystem& sys, double lambda) { return assemble(sys, lambda).K.inertia().negative; }
 
 Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& f) {

@@ -36,6 +36,8 @@ class BlockTridiagonal {
   /// largest (singular to working precision; inverse iteration passes 0: near-singular is
   /// what it wants).
   Eigen::VectorXd solve(const Eigen::VectorXd& f, double min_pivot_rel = 1e-14) const;
+  /// K d over every DOF, held ones included (their rows are what holds them: the reactions).
+  Eigen::VectorXd multiply(const Eigen::VectorXd& d) const;
   /// Dense copy of the free part (for tests).
   Eigen::MatrixXd dense_free() const;
 

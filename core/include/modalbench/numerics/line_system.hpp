@@ -105,6 +105,16 @@ Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb
 /// std::runtime_error naming a mechanism (a rigid motion no spring restrains) or a singular K.
 Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& f);
 
+/// What one support of the line exerts on it (m entries, the line's force units): at a held DOF
+/// the row of K(lambda) d - f there, at a spring -k d. One per end with a support and per
+/// attachment with a spring, in that order (left end, right end, attachments).
+struct LineReaction {
+  double xi = 0;
+  Eigen::VectorXd r;
+};
+std::vector<LineReaction> line_reactions(const LineSystem& sys, const AssembledLine& asmb, const Eigen::VectorXd& d,
+                                         const Eigen::VectorXd& f);
+
 /// Eigenvalues below kRigidThreshold * lambda_hint count as rigid-body modes (exactly 0) only on
 /// lines without rigid motions of their own (line_rigidity().available false); lines with them
 /// report exactly their free_rigid modes as rigid and resolve every other one, however small.

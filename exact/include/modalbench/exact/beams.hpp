@@ -59,6 +59,11 @@ struct DistributedLineLoad {
   double x_from = 0, x_to = 0, q_from = 0, q_to = 0;
 };
 using DistributedLineLoads = std::vector<DistributedLineLoad>;
+/// What a support of one line exerts on it under the static loads: force (N; a torsion bar: N*m)
+/// and, in bending, moment (N*m, in the convention of the loads' `moment`), at x (m).
+struct SupportReaction {
+  double x = 0, force = 0, moment = 0;
+};
 struct BendingResponse {
   double w = 0;      ///< m
   double theta = 0;  ///< rad; = -phi for bending in x-z (theta_y), +phi in x-y (theta_z)
@@ -71,11 +76,13 @@ struct BendingResponse {
 std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings left, EndSprings right,
                                          const std::vector<LineLoad>& loads, const std::vector<double>& probes,
                                          double moment_sign, long* unknowns = nullptr,
-                                         const PointAttachments& points = {}, const DistributedLineLoads& dist = {});
+                                         const PointAttachments& points = {}, const DistributedLineLoads& dist = {},
+                                         std::vector<SupportReaction>* reactions = nullptr);
 /// Static displacement of a bar at the probes under point loads (force = Fx or Mx).
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
                                const std::vector<double>& probes, long* unknowns = nullptr,
-                               const PointAttachments& points = {}, const DistributedLineLoads& dist = {});
+                               const PointAttachments& points = {}, const DistributedLineLoads& dist = {},
+                               std::vector<SupportReaction>* reactions = nullptr);
 /// Undamped receptance w(observe)/F(excite) of a beam in one plane at omega (exact).
 /// `unknowns`, if given, is raised to the size of the system solved (as for the statics).
 double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
