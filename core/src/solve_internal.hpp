@@ -24,6 +24,11 @@ double peak_resident_bytes();
 /// "1.23 GB".
 std::string gigabytes(double bytes);
 
+/// Warnings (never a status) for results outside what the model means: material values far from
+/// engineering materials in SI, deflections beyond the small-deflection range, modes shorter than
+/// the depth under Euler-Bernoulli or Kirchhoff theory (plausibility.cpp).
+std::vector<std::string> plausibility_warnings(const Scene& scene, const Result& result);
+
 /// A solve of the error estimate: its mesh, how much coarser it is than the next finer one, and
 /// its result.
 struct MeshSolve {

@@ -433,6 +433,8 @@ void SolvePipeline::finish() {
     for (double v : {d.u, d.v, d.w, d.theta_x, d.theta_y, d.theta_z}) finite = finite && std::isfinite(v);
   for (const auto& f : result_.frf) finite = finite && std::isfinite(std::abs(f.receptance));
   if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
+  if (finite && severity(sum.status) < severity(Status::ResourceLimit))
+    for (std::string& w : plausibility_warnings(scene_, result_)) sum.warnings.push_back(std::move(w));
   if (result_.mode_families.size() != result_.frequencies_rad_s.size())
     result_.mode_families.resize(result_.frequencies_rad_s.size(), ModeFamily::Unknown);
   if (sum.diagnostic("estimated_memory_bytes") > 0) sum.set_diagnostic("process_peak_resident_bytes", peak_resident_bytes());
