@@ -14,16 +14,12 @@
 #include <cmath>
 #include <string>
 
-#include "modalbench/registry.hpp"
+#include "solver_tests.hpp"
 
 using namespace modalbench;
+using namespace modalbench::solver_tests;
 
 namespace {
-
-const Registry& registry() {
-  static const Registry r = make_default_registry();
-  return r;
-}
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double L = 2.0, b = 0.03, h = 0.05, E = 2.1e11, nu = 0.3, rho = 7850.0;
@@ -48,8 +44,6 @@ rho = 7850.0
 [supports]
 )" + supports + "\n" + extra + "\n[request]\nmodes = 0\nprobes = " + probes + "\n";
 }
-
-double rel(double a, double ref) { return std::abs(a / ref - 1.0); }
 
 /// exact to 1e-9 and rfem (mesh) within its own estimate, at every probe, against `expected`.
 void check(const Scene& s, const std::vector<double>& expected, const std::string& mesh = "512") {
@@ -168,15 +162,7 @@ BOOST_AUTO_TEST_CASE(back_ends_without_distributed_loads_compute_the_rest) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_distributed_loads_are_named) {
-  auto expect = [](const std::string& text, const std::string& key, const std::string& reason) {
-    try {
-      parse_scene(text, "bad.toml");
-      BOOST_ERROR("accepted: " << key);
-    } catch (const InputError& e) {
-      BOOST_TEST(e.key() == key, e.what());
-      BOOST_TEST(e.reason().find(reason) != std::string::npos, e.what());
-    }
-  };
+  const auto expect = expect_input_error;
   const std::string sup = "x0 = \"pinned\"\nxL = \"pinned\"";
   expect(beam("euler-bernoulli", sup, "[[line_loads]]\nqz = -1.0\nx_from = 1.5\nx_to = 0.5", "[1.0]"), "line_loads[0].x_to",
          "must exceed x_from");

@@ -5,16 +5,12 @@
 
 #include <string>
 
-#include "modalbench/registry.hpp"
+#include "solver_tests.hpp"
 
 using namespace modalbench;
+using namespace modalbench::solver_tests;
 
 namespace {
-
-const Registry& registry() {
-  static const Registry r = make_default_registry();
-  return r;
-}
 
 Scene builtin(const char* file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + file); }
 

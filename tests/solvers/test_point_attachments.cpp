@@ -16,16 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "modalbench/registry.hpp"
+#include "solver_tests.hpp"
 
 using namespace modalbench;
+using namespace modalbench::solver_tests;
 
 namespace {
-
-const Registry& registry() {
-  static const Registry r = make_default_registry();
-  return r;
-}
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double L = 2.0, b = 0.03, h = 0.05, E = 2.1e11, rho = 7850.0;
@@ -71,8 +67,6 @@ std::vector<double> roots(const std::function<double(double)>& f, double lo, dou
   }
   return out;
 }
-
-double rel(double a, double ref) { return std::abs(a / ref - 1.0); }
 
 }  // namespace
 
@@ -170,15 +164,7 @@ BOOST_AUTO_TEST_CASE(back_ends_that_do_not_model_them_say_so) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_points_are_named) {
-  auto expect = [](const std::string& text, const std::string& key, const std::string& reason) {
-    try {
-      parse_scene(text, "bad.toml");
-      BOOST_ERROR("accepted: " << key);
-    } catch (const InputError& e) {
-      BOOST_TEST(e.key() == key, e.what());
-      BOOST_TEST(e.reason().find(reason) != std::string::npos, e.what());
-    }
-  };
+  const auto expect = expect_input_error;
   const std::string ends = "x0 = \"pinned\"\nxL = \"pinned\"\n";
   expect(beam(ends + "[[supports.points]]\nx = 0.0\nkind = \"pinned\"", "", 2), "supports.points[0].x", "strictly between");
   expect(beam(ends + "[[supports.points]]\nx = 1.0\nkind = \"pinned\"\n[[supports.points]]\nx = 1.0\nkind = \"clamped\"", "", 2),

@@ -9,16 +9,12 @@
 #include <cmath>
 #include <string>
 
-#include "modalbench/registry.hpp"
+#include "solver_tests.hpp"
 
 using namespace modalbench;
+using namespace modalbench::solver_tests;
 
 namespace {
-
-const Registry& registry() {
-  static const Registry r = make_default_registry();
-  return r;
-}
 
 std::string beam(const std::string& supports, const std::string& extra) {
   return R"(
@@ -45,8 +41,6 @@ const Reaction& named(const Result& r, const std::string& name) {
   BOOST_FAIL("no reaction named " << name);
   throw std::logic_error("unreachable");
 }
-
-double rel(double a, double ref) { return std::abs(a / ref - 1.0); }
 
 }  // namespace
 

@@ -10,16 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "modalbench/registry.hpp"
+#include "solver_tests.hpp"
 
 using namespace modalbench;
+using namespace modalbench::solver_tests;
 
 namespace {
-
-const Registry& registry() {
-  static const Registry r = make_default_registry();
-  return r;
-}
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double L = 1.0, d = 0.04, E = 2.1e11, nu = 0.3, rho = 7850.0;
@@ -61,8 +57,6 @@ std::vector<double> closed_form_spatial() {
   w.resize(7);
   return w;
 }
-
-double rel(double a, double b) { return std::abs(a / b - 1.0); }
 
 }  // namespace
 
