@@ -16,9 +16,12 @@ import math
 import os
 import tomllib
 
-# Columns every row has, after the parameters; then f1, f2, ... (rad/s).
-COLUMNS = ["scene", "backend", "mesh", "status", "message", "unknowns", "max_backward_error", "time_total_s",
-           "time_build_s", "time_modes_s", "time_statics_s", "time_frf_s"]
+# Columns every row has, after the parameters; then the lists below, one column per entry.
+COLUMNS = ["scene", "backend", "mesh", "status", "message", "unknowns", "max_backward_error", "estimate_frequencies",
+           "estimate_deflections", "time_total_s", "time_build_s", "time_modes_s", "time_statics_s", "time_frf_s"]
+# Per-entry columns: f1_rad_s, ... (frequencies), w1_m, ... (w at each probe), xf1_rad_s, ...
+# (the extrapolated frequencies, where the back-end made them).
+LISTS = [("frequencies_rad_s", "f{}_rad_s"), ("w_m", "w{}_m"), ("extrapolated_rad_s", "xf{}_rad_s")]
 TIMING = [c for c in COLUMNS if c.startswith("time_")]
 
 
@@ -38,9 +41,19 @@ def _row(task):
                    time_total_s=t["total"], time_build_s=t["build"], time_modes_s=t["modes"],
                    time_statics_s=t["statics"], time_frf_s=t["frf"], mesh=r.mesh)
         row["frequencies_rad_s"] = [float(f) for f in r.frequencies_rad_s]
+        row["w_m"] = [float(w) for w in r.w]
+        x = r.extrapolated_frequencies_rad_s
+        row["extrapolated_rad_s"] = [float(f) for f in x] if x is not None else []
+        e = r.as_dict.get("error_estimate") or {}
+        row.update(estimate_frequencies=_number(e.get("frequencies")), estimate_deflections=_number(e.get("deflections")))
     except InputError as e:
         row.update(status="invalid-input", message=str(e), frequencies_rad_s=[])
     return row
+
+
+def _number(v):
+    """A JSON number, or NaN for null (not estimated)."""
+    return math.nan if v is None else float(v)
 
 
 def _tasks(scenes, backends, meshes):
@@ -77,15 +90,16 @@ def study(scenes, backends, meshes=None, *, scheduler=None, workers=None, out=No
 
 
 def _flatten(rows):
-    nf = max((len(r.get("frequencies_rad_s", [])) for r in rows), default=0)
+    counts = {key: max((len(r.get(key, [])) for r in rows), default=0) for key, _ in LISTS}
     table = []
     for r in rows:
-        row = {k: v for k, v in r.items() if k != "frequencies_rad_s"}
+        row = {k: v for k, v in r.items() if k not in counts}
         for k in COLUMNS:
             row.setdefault(k, "")
-        f = r.get("frequencies_rad_s", [])
-        for i in range(nf):
-            row[f"f{i + 1}_rad_s"] = f[i] if i < len(f) else math.nan
+        for key, name in LISTS:
+            values = r.get(key, [])
+            for i in range(counts[key]):
+                row[name.format(i + 1)] = values[i] if i < len(values) else math.nan
         table.append(row)
     return table
 

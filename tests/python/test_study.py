@@ -27,7 +27,7 @@ def _sweep():
             d["supports"] = dict(d0["supports"])
             d["supports"]["x0"] = dict(d0["supports"]["x0"], translational=k)
             d["loads"] = [dict(l, x=min(l["x"], L)) for l in d0.get("loads", [])]
-            d["request"] = {"modes": 4}
+            d["request"] = {"modes": 4, "probes": [0.5 * L]}
             out.append(({"length": L, "k0": k}, mb.Scene.from_dict(d)))
     return out
 
@@ -51,8 +51,19 @@ def test_a_3x3x2_study_has_18_rows_with_its_inputs(tmp_path):
         for k in (1e4, 1e6, 1e8):
             e, d = by[(L, k, "exact")], by[(L, k, "difference_eq")]
             assert abs(d["f1_rad_s"] / e["f1_rad_s"] - 1) < 1e-3
+    # Beside the frequencies: w at the probe, the error estimate and the extrapolated values.
+    for L in (1.0, 1.5, 2.0):
+        for k in (1e4, 1e6, 1e8):
+            e, d = by[(L, k, "exact")], by[(L, k, "difference_eq")]
+            assert abs(d["w1_m"] / e["w1_m"] - 1) < 1e-3
+            assert d["estimate_frequencies"] > 0 and d["estimate_frequencies"] < 1e-3
+            # Extrapolated where the back-end made it (NaN: not made on that mesh family).
+            if d["xf1_rad_s"] == d["xf1_rad_s"]:
+                assert abs(d["xf1_rad_s"] / e["f1_rad_s"] - 1) < 1e-6
+    assert any(r["xf1_rad_s"] == r["xf1_rad_s"] for r in table if r["backend"] == "difference_eq")
     lines = (tmp_path / "study.csv").read_text().splitlines()
     assert len(lines) == 19
+    assert {"w1_m", "estimate_frequencies", "estimate_deflections", "xf1_rad_s"} <= set(lines[0].split(","))
     # Local processes give the same table (timings aside).
     assert _strip(study(_sweep(), ["exact", "difference_eq"], workers=2)) == _strip(table)
 
