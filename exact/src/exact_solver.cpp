@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "beam_attachments.hpp"
 #include "exact_shapes.hpp"
 #include "modalbench/timer.hpp"
 
@@ -59,29 +60,6 @@ Bar torsion_bar(const Scene& s) {
   return {s.material.G * sec.J, s.material.rho * sec.Ip, s.geometry.length};
 }
 
-/// The scene's point supports and masses as seen by one line: bending in x-z (w, theta_y: Jy),
-/// in x-y (v, theta_z: Jz), axial (u), torsion (theta_x: Jx).
-PointAttachments line_points(const Scene& s, ModeFamily line) {
-  PointAttachments out;
-  for (const PointSupport& p : s.point_supports) {
-    const Support& sp = p.support;
-    switch (line) {
-      case ModeFamily::Axial: out.push_back({p.x, {sp.axial, 0.0}, 0.0, 0.0}); break;
-      case ModeFamily::Torsion: out.push_back({p.x, {sp.torsional, 0.0}, 0.0, 0.0}); break;
-      default: out.push_back({p.x, {sp.translational, sp.rotational}, 0.0, 0.0}); break;
-    }
-  }
-  for (const PointMass& m : s.masses) {
-    switch (line) {
-      case ModeFamily::Axial: out.push_back({m.x, {0.0, 0.0}, m.mass, 0.0}); break;
-      case ModeFamily::Torsion: out.push_back({m.x, {0.0, 0.0}, m.Jx, 0.0}); break;
-      case ModeFamily::BendingXY: out.push_back({m.x, {0.0, 0.0}, m.mass, m.Jz}); break;
-      default: out.push_back({m.x, {0.0, 0.0}, m.mass, m.Jy}); break;
-    }
-  }
-  return out;
-}
-
 /// Count evaluations and the largest dynamic stiffness factorized.
 void note(Result& r, const Frequencies& f) {
   r.summary.set_diagnostic("count_evaluations", std::max(0.0, r.summary.diagnostic("count_evaluations")) +
@@ -113,35 +91,6 @@ void beam_modes(const Scene& s, ModeList& list, Result& r) {
     note(r, ft);
   }
 }
-
-/// The lines' support reactions gathered per support, in global axes (Result::reactions).
-class ReactionTable {
- public:
-  explicit ReactionTable(const Scene& s) : s_(s) {}
-  /// Adds one line's reactions: its force to component `force` (0..2: x, y, z), its moment (if
-  /// any) to `moment` (0..2), -1 where the line has none.
-  void add(const std::vector<SupportReaction>& rs, int force, int moment) {
-    for (const SupportReaction& r : rs) {
-      Reaction& e = at(r.x);
-      if (force >= 0) e.force[static_cast<std::size_t>(force)] += r.force;
-      if (moment >= 0) e.moment[static_cast<std::size_t>(moment)] += r.moment;
-    }
-  }
-  std::vector<Reaction> take() { return std::move(out_); }
-
- private:
-  Reaction& at(double x) {
-    for (Reaction& e : out_)
-      if (e.position[0] == x) return e;
-    std::string name = x == 0.0 ? "x0" : x == s_.geometry.length ? "xL" : fmt::format("x = {:g} m", x);
-    for (std::size_t i = 0; i < s_.point_supports.size(); ++i)
-      if (std::abs(s_.point_supports[i].x - x) <= 1e-12 * s_.geometry.length) name = fmt::format("points[{}]", i);
-    out_.push_back({name, {x, 0.0}, {}, {}});
-    return out_.back();
-  }
-  const Scene& s_;
-  std::vector<Reaction> out_;
-};
 
 void beam_statics(const Scene& s, Result& r) {
   std::vector<double> xs;
@@ -188,13 +137,7 @@ void beam_statics(const Scene& s, Result& r) {
     r.deflections = defl;
     // Bending in x-z: Fz and My (the line's moment is My already, moment_sign applied); in x-y:
     // Fy and Mz; the bars: Fx and Mx.
-    ReactionTable table(s);
-    table.add(rz, 2, 1);
-    table.add(ra, 0, -1);
-    table.add(ry, 1, 2);
-    for (SupportReaction& t : rt) t.moment = std::exchange(t.force, 0.0);  // a torsion bar's "force" is Mx
-    table.add(rt, -1, 0);
-    r.reactions = table.take();
+    r.reactions = gather_reactions(s, rz, ra, ry, rt);
   } catch (const std::runtime_error& e) {
     // Only a mechanism is the input's fault; any other failure is a numerical breakdown.
     if (std::string(e.what()).rfind("mechanism", 0) == 0)
