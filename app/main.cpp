@@ -143,6 +143,19 @@ std::string mesh_line(const mb::Discretization& asked, bool given, const mb::Res
   return kept == asked.spec() ? kept + " (default)" : fmt::format("{} (default {}, refined)", kept, asked.spec());
 }
 
+/// A probe's stress resultants (sign conventions: result.hpp, InternalForces), "" where not given.
+std::string forces_line(const mb::Scene& scene, const mb::Deflection& d) {
+  if (!d.has_forces) return "";
+  const auto& f = d.forces;
+  if (scene.is_plate())
+    return fmt::format("\n      moments mx = {:.6e}, my = {:.6e}, mxy = {:.6e} N*m/m", f.mx, f.my, f.mxy);
+  std::string out = fmt::format("\n      My = {:.6e} N*m (sagging +), Qz = dMy/dx = {:.6e} N", f.My, f.Qz);
+  if (scene.physics != mb::Physics::Bending) out += fmt::format(", N = {:.6e} N", f.N);
+  if (scene.physics == mb::Physics::Spatial)
+    out += fmt::format(", Mz = {:.6e} N*m, Qy = {:.6e} N, T = {:.6e} N*m", f.Mz, f.Qy, f.T);
+  return out;
+}
+
 /// A probe's deflection in the components the scene carries.
 std::string probe_line(const mb::Scene& scene, const mb::Deflection& d) {
   if (scene.is_plate())
@@ -177,7 +190,7 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i)
     std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  {:>14.8g} Hz  {}\n", i + 1, r.frequencies_rad_s[i],
                              r.frequencies_rad_s[i] / (2 * 3.141592653589793), mb::to_string(r.mode_families[i]));
-  for (const auto& d : r.deflections) std::cout << "  probe " << probe_line(scene, d) << "\n";
+  for (const auto& d : r.deflections) std::cout << "  probe " << probe_line(scene, d) << forces_line(scene, d) << "\n";
   for (const auto& rc : r.reactions)
     std::cout << fmt::format("  reaction {} (x = {:g} m): F = [{:.6e}, {:.6e}, {:.6e}] N, M = [{:.6e}, {:.6e}, {:.6e}] N*m\n",
                              rc.support, rc.position[0], rc.force[0], rc.force[1], rc.force[2], rc.moment[0],

@@ -43,6 +43,25 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   j["reactions"] = reactions;
   j["frequencies_rad_s"] = freqs;
   j["mode_families"] = fams;
+  // Stress resultants (result.hpp, InternalForces) in the components the scene carries.
+  auto forces = [&](const InternalForces& f) {
+    json e;
+    if (scene.is_plate()) {
+      e["mx_N_m_per_m"] = num(f.mx);
+      e["my_N_m_per_m"] = num(f.my);
+      e["mxy_N_m_per_m"] = num(f.mxy);
+      return e;
+    }
+    e["My_N_m"] = num(f.My);
+    e["Qz_N"] = num(f.Qz);
+    if (scene.physics != Physics::Bending) e["N_N"] = num(f.N);
+    if (scene.physics == Physics::Spatial) {
+      e["Mz_N_m"] = num(f.Mz);
+      e["Qy_N"] = num(f.Qy);
+      e["T_N_m"] = num(f.T);
+    }
+    return e;
+  };
   // One probe's deflection, in the components the scene carries (also for the extrapolated ones).
   auto deflection = [&](const Deflection& d) {
     json e;
@@ -61,6 +80,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
       e["w"] = num(d.w);
       e["rotation"] = json::array({num(d.theta_x), num(d.theta_y)});
     }
+    if (d.has_forces) e["forces"] = forces(d.forces);
     return e;
   };
   json defl = json::array();

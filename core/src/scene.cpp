@@ -140,17 +140,35 @@ std::vector<PointLoad> Scene::all_point_loads() const {
   return out;
 }
 
+std::vector<Segment> Scene::beam_pieces() const {
+  if (!segments.empty()) return segments;
+  Segment one;
+  one.x_to = geometry.length;
+  one.width = geometry.width;
+  one.height = geometry.height;
+  one.section = cross_section;
+  one.material = material;
+  return {one};
+}
+
 std::vector<DistributedLoad> Scene::all_distributed_loads() const {
   std::vector<DistributedLoad> out = is_beam() ? line_loads : pressures;
-  if (gravity) {
+  if (!gravity) return out;
+  // The weight per length (beam: of each piece) or per area (plate), over the whole of it.
+  auto weight = [&](double per, double x_from, double x_to) {
     DistributedLoad w;
-    w.to = {geometry.length, geometry.width};
-    const double per = is_beam() ? material.rho * section().A : material.rho * geometry.height;
+    w.from = {x_from, 0.0};
+    w.to = {x_to, geometry.width};
     w.qx = {per * (*gravity)[0], per * (*gravity)[0]};
     w.qy = {per * (*gravity)[1], per * (*gravity)[1]};
     w.qz = {per * (*gravity)[2], per * (*gravity)[2]};
     out.push_back(w);
+  };
+  if (is_plate()) {
+    weight(material.rho * geometry.height, 0.0, geometry.length);
+    return out;
   }
+  for (const Segment& p : beam_pieces()) weight(p.material.rho * p.properties().A, p.x_from, p.x_to);
   return out;
 }
 

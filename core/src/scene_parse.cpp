@@ -51,6 +51,9 @@ using scene_detail::read_distributed_loads;
 using scene_detail::read_gravity;
 using scene_detail::read_masses;
 using scene_detail::read_point_supports;
+using scene_detail::read_section;
+using scene_detail::read_segment_materials;
+using scene_detail::read_segment_sections;
 using scene_detail::read_support_node;
 
 Support read_support(const Reader& r, const toml::table& supports, const std::string& key, const Scene& s) {
@@ -109,95 +112,40 @@ void read_scene_table(const Reader& r, const toml::table& root, Scene& s) {
   }
 }
 
-/// [geometry] section = { shape = ... }: a beam's cross-section (scene.hpp, SectionSpec).
-void read_section(const Reader& r, const toml::table& g, Scene& s) {
-  const std::string where = "geometry.section";
-  const auto& t = r.table(g, "geometry", "section");
-  const toml::node* shape_node = t.get("shape");
-  if (!shape_node || !shape_node->is_string())
-    r.fail(where + ".shape", "missing or not a string (rectangle, circle, tube or general)");
-  const std::string shape = shape_node->as_string()->get();
-  SectionSpec& sp = s.cross_section;
-  if (g.get("width") || g.get("height"))
-    r.fail("geometry.width", "give the section either as geometry.width and height (a rectangle) or as "
-                             "geometry.section, not both");
-  if (shape == "rectangle") {
-    r.only_keys(t, where, {"shape", "width", "height"});
-    sp.shape = SectionShape::Rectangle;
-    s.geometry.width = r.positive(t, where, "width");
-    s.geometry.height = r.positive(t, where, "height");
-  } else if (shape == "circle") {
-    r.only_keys(t, where, {"shape", "diameter"});
-    sp.shape = SectionShape::Circle;
-    sp.diameter = r.positive(t, where, "diameter");
-    s.geometry.width = s.geometry.height = sp.diameter;
-  } else if (shape == "tube") {
-    r.only_keys(t, where, {"shape", "outer_diameter", "inner_diameter"});
-    sp.shape = SectionShape::Tube;
-    sp.diameter = r.positive(t, where, "outer_diameter");
-    sp.inner_diameter = r.positive(t, where, "inner_diameter");
-    if (!(sp.inner_diameter < sp.diameter))
-      r.fail(where + ".inner_diameter", fmt::format("must be below outer_diameter ({} m; got {} m): a tube has a wall",
-                                                    sp.diameter, sp.inner_diameter));
-    s.geometry.width = s.geometry.height = sp.diameter;
-  } else if (shape == "general") {
-    r.only_keys(t, where, {"shape", "area", "Iy", "Iz", "J"});
-    sp.shape = SectionShape::General;
-    sp.A = r.positive(t, where, "area");
-    sp.Iy = r.positive(t, where, "Iy");
-    sp.Iz = r.positive(t, where, "Iz");
-    sp.J = r.positive(t, where, "J");
-    s.geometry.height = std::sqrt(12.0 * sp.Iy / sp.A);
-    s.geometry.width = sp.A / s.geometry.height;
-  } else {
-    r.fail(where + ".shape", "unknown shape '" + shape + "' (expected rectangle, circle, tube or general)");
-  }
-}
-
 /// [geometry]: length; a beam's section (width and height: a rectangle; or section = {...}); a
 /// plate's width and thickness (height).
 void read_geometry(const Reader& r, const toml::table& root, Scene& s) {
   const auto& g = r.table(root, "", "geometry");
   r.only_keys(g, "geometry", {"length", "width", "height", "section"});
   s.geometry.length = r.positive(g, "geometry", "length");
+  if (root.get("segments")) {
+    if (s.is_plate()) r.fail("segments", "a plate has no segments (a stepped beam's pieces)");
+    for (const char* k : {"width", "height", "section"})
+      if (g.get(k))
+        r.fail(std::string("geometry.") + k, "a stepped beam gives its sections per piece ([[segments]] section = "
+                                              "{...}), not here");
+    read_segment_sections(r, root, s);
+    return;
+  }
   if (g.get("section")) {
     if (s.is_plate()) r.fail("geometry.section", "a plate has no cross-section: give its width and thickness (height)");
-    read_section(r, g, s);
+    if (g.get("width") || g.get("height"))
+      r.fail("geometry.width", "give the section either as geometry.width and height (a rectangle) or as "
+                               "geometry.section, not both");
+    read_section(r, r.table(g, "geometry", "section"), "geometry.section", s.cross_section, s.geometry);
     return;
   }
   s.geometry.width = r.positive(g, "geometry", "width");
   s.geometry.height = r.positive(g, "geometry", "height");
 }
 
-/// The shear coefficient where material.kappa is not given: Cowper's for circles and tubes (from
-/// nu), 5/6 for rectangles (as every scene so far was solved; Cowper's rectangle would be
-/// 10 (1 + nu) / (12 + 11 nu)); a general section has no shape to derive one from.
+/// The shear coefficient where material.kappa is not given (default_kappa in scene_reader.hpp);
+/// said only where the theory has shear deformation.
 void default_kappa(const Reader& r, Scene& s) {
-  const SectionSpec& sp = s.cross_section;
-  const double nu = s.material.nu;
   std::string note;
-  switch (s.is_beam() ? sp.shape : SectionShape::Rectangle) {
-    case SectionShape::Circle:
-      s.material.kappa = cowper_kappa_tube(nu, 0.0);
-      note = fmt::format("Cowper's shear coefficient of a circle, 6 (1 + nu) / (7 + 6 nu) = {:.6g}", s.material.kappa);
-      break;
-    case SectionShape::Tube:
-      s.material.kappa = cowper_kappa_tube(nu, sp.inner_diameter / sp.diameter);
-      note = fmt::format("Cowper's shear coefficient of a tube (d/D = {:.4g}) = {:.6g}", sp.inner_diameter / sp.diameter,
-                         s.material.kappa);
-      break;
-    case SectionShape::General:
-      if (s.theory == Theory::Timoshenko)
-        r.fail("material.kappa", "required for a general section under Timoshenko theory (no shape to derive "
-                                 "Cowper's shear coefficient from)");
-      s.material.kappa = 1.0;  // not used by the Euler-Bernoulli theory
-      break;
-    case SectionShape::Rectangle:
-      s.material.kappa = 5.0 / 6.0;
-      note = "shear coefficient 5/6";
-      break;
-  }
-  // Said only where the theory has shear deformation: Euler-Bernoulli and Kirchhoff do not use it.
+  const SectionSpec rect;
+  s.material.kappa = scene_detail::default_kappa(r, s.is_beam() ? s.cross_section : rect, s.material.nu, s.theory,
+                                                 "material.kappa", note);
   if (!note.empty() && (s.theory == Theory::Timoshenko || s.theory == Theory::Mindlin))
     s.notes.push_back("material.kappa not given: " + note);
 }
@@ -399,13 +347,14 @@ Scene parse_scene(std::string_view text, const std::string& source) {
     throw InputError(source, fmt::format("line {}", e.source().begin.line),
                      std::string("TOML syntax: ") + std::string(e.description()));
   }
-  r.only_keys(root, "", {"scene", "geometry", "material", "supports", "masses", "loads", "line_loads", "pressures",
+  r.only_keys(root, "", {"scene", "geometry", "segments", "material", "supports", "masses", "loads", "line_loads", "pressures",
                          "gravity", "request", "backend"});
   Scene s;
   s.source = source;
   read_scene_table(r, root, s);
   read_geometry(r, root, s);
   read_material(r, root, s);
+  read_segment_materials(r, root, s);
   read_supports(r, root, s);
   read_masses(r, root, s);
   read_loads(r, root, s);

@@ -101,6 +101,22 @@ inline void check_range(const Reader& r, const std::string& key, double v, doubl
 /// A support given as a name or a table of springs (scene_parse.cpp), `full` its key.
 Support read_support_node(const Reader& r, const toml::node* n, const std::string& full, const Scene& s);
 
+// Sections and the pieces of a stepped beam (scene_parse_segments.cpp).
+/// A section table (`where` names it): its SectionSpec, and the extent (width, height) of
+/// the section into `extent` (a rectangle's sides; a circle's or tube's outer diameter; a general
+/// section's equivalent rectangle).
+void read_section(const Reader& r, const toml::table& t, const std::string& where, SectionSpec& sp, Geometry& extent);
+/// The default shear coefficient of a section (Cowper's for circles and tubes, from nu; 5/6 for
+/// rectangles); a general section has none: under Timoshenko theory that fails naming `key`, else
+/// 1 (unused). `note` says which was taken.
+double default_kappa(const Reader& r, const SectionSpec& sp, double nu, Theory theory, const std::string& key,
+                     std::string& note);
+/// [[segments]]: each piece's length and section (before [material]: the first piece's section
+/// is the scene's cross_section, its default kappa's shape).
+void read_segment_sections(const Reader& r, const toml::table& root, Scene& s);
+/// [[segments]] material = {...}: each piece's material, the scene's with the piece's overrides.
+void read_segment_materials(const Reader& r, const toml::table& root, Scene& s);
+
 // What a structure carries besides its ends (scene_parse_structure.cpp).
 /// [[supports.points]] of the [supports] table `sup`.
 void read_point_supports(const Reader& r, const toml::table& sup, Scene& s);

@@ -8,6 +8,33 @@ namespace modalbench {
 using scene_detail::check_range;
 using scene_detail::Reader;
 
+namespace {
+
+/// A stepped beam's pieces: contiguous from 0 to the length, each with a valid section and material.
+void validate_segments(const Reader& r, const Scene& s) {
+  if (s.segments.empty()) return;
+  if (s.is_plate()) r.fail("segments", "a plate has no segments (a stepped beam's pieces)");
+  double x = 0;
+  for (std::size_t i = 0; i < s.segments.size(); ++i) {
+    const Segment& seg = s.segments[i];
+    const std::string key = fmt::format("segments[{}]", i);
+    if (!(seg.x_from == x && seg.x_to > seg.x_from && std::isfinite(seg.x_to)))
+      r.fail(key + ".length", "pieces must follow each other from x = 0 with positive lengths");
+    x = seg.x_to;
+    const Section p = seg.properties();
+    for (double v : {p.A, p.Iy, p.Iz, p.J, seg.width, seg.height})
+      if (!(std::isfinite(v) && v > 0)) r.fail(key + ".section", "its properties must be finite and > 0");
+    const Material& m = seg.material;
+    for (double v : {m.E, m.G, m.rho, m.kappa})
+      if (!(std::isfinite(v) && v > 0)) r.fail(key + ".material", "E, G, rho and kappa must be finite and > 0");
+    if (!(m.nu > -1.0 && m.nu < 0.5)) r.fail(key + ".material.nu", "must lie in (-1, 0.5)");
+  }
+  if (x != s.geometry.length)
+    r.fail("segments", fmt::format("the pieces end at {} m, not at geometry.length = {} m", x, s.geometry.length));
+}
+
+}  // namespace
+
 void validate(const Scene& s) {
   Reader r(s.source);
   auto finite_pos = [&](const std::string& key, double v) {
@@ -52,6 +79,7 @@ void validate(const Scene& s) {
   } else if (s.theory != Theory::EulerBernoulli && s.theory != Theory::Timoshenko) {
     r.fail("scene.theory", "a beam's theory is euler-bernoulli or timoshenko");
   }
+  validate_segments(r, s);
   if (s.is_plate() && !s.point_supports.empty())
     r.fail("supports.points", "point supports on plates are not modelled yet (beams only)");
   if (s.is_plate() && !s.masses.empty()) r.fail("masses", "point masses on plates are not modelled yet (beams only)");

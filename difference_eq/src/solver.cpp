@@ -61,6 +61,11 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
     c.reason = "difference_eq solves beams only (a regular chain of Hermite beam elements); plates are not supported";
     return c;
   }
+  if (s.is_stepped()) {
+    c.reason = "difference_eq cannot model a stepped beam ([[segments]]): its closed forms need a regular chain of "
+               "identical elements";
+    return c;
+  }
   if (!s.point_supports.empty() || !s.masses.empty()) {
     c.reason = "difference_eq does not yet model supports between the ends or point masses (its closed forms "
                "cover end springs and nodal loads)";

@@ -15,6 +15,10 @@ namespace modalbench::dtfm {
 
 Capability DtfmSolver::supports(const Scene& s) const {
   Capability c;
+  if (s.is_stepped()) {
+    c.reason = "dtfm does not yet model stepped beams ([[segments]]: its prisms run end to end with one section)";
+    return c;
+  }
   if (!s.point_supports.empty() || !s.masses.empty()) {
     c.reason = "dtfm does not yet model supports between the ends or point masses (its prisms run end to end)";
     return c;

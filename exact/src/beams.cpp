@@ -128,17 +128,19 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
   if (reactions)
     for (const LineReaction& r : line_reactions(line.sys, asmb, d, f))
       reactions->push_back({r.xi * L, r.r[0] * beam.EI / (L * L), moment_sign * r.r[1] * beam.EI / L});
+  // The state [w, phi, Q, M] has Q = -dM/dx (beams.hpp); forces scaled by EI / L^2 and EI / L.
   std::vector<BendingResponse> out;
   for (double x : probes) {
-    const Eigen::VectorXd u = displacement_at(line.sys, asmb, 0.0, d, points, x / L);
-    out.push_back({u[0] * L, moment_sign * u[1]});
+    const Eigen::VectorXd y = state_at(line.sys, asmb, 0.0, d, points, x / L);
+    out.push_back({y[0] * L, moment_sign * y[1], y[3] * beam.EI / L, -y[2] * beam.EI / (L * L)});
   }
   return out;
 }
 
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
                                const std::vector<double>& probes, long* unknowns, const PointAttachments& supports,
-                               const DistributedLineLoads& dist, std::vector<SupportReaction>* reactions) {
+                               const DistributedLineLoads& dist, std::vector<SupportReaction>* reactions,
+                               std::vector<double>* forces) {
   if (!bar_restrained(k_left, k_right, supports))
     throw std::runtime_error("mechanism: no support restrains the bar (axial or torsional rigid motion)");
   BarLine line(bar, k_left, k_right, supports);
@@ -159,7 +161,11 @@ std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, co
     for (const LineReaction& r : line_reactions(line.sys, asmb, d, f))
       reactions->push_back({r.xi * bar.L, r.r[0] * bar.S / bar.L, 0.0});
   std::vector<double> out;
-  for (double x : probes) out.push_back(displacement_at(line.sys, asmb, 0.0, d, points, x / bar.L)[0]);
+  for (double x : probes) {
+    const Eigen::VectorXd y = state_at(line.sys, asmb, 0.0, d, points, x / bar.L);
+    out.push_back(y[0]);
+    if (forces) forces->push_back(y[1] * bar.S / bar.L);  // N = S u', scaled by S / L
+  }
   return out;
 }
 
@@ -176,18 +182,77 @@ double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings righ
   return displacement_at(line.sys, asmb, lam, d, points, observe / beam.L)[0] * beam.L;
 }
 
-BeamBending bending_xz(const Scene& s) {
-  const Section sec = s.section();
-  const auto& m = s.material;
+namespace {
+
+/// A scene's beam in one plane, piece by piece; `I` picks the piece's second moment (Iy or Iz).
+BeamBending bending_of(const Scene& s, double Section::*I) {
   const bool eb = s.theory == Theory::EulerBernoulli;
-  return {m.E * sec.Iy, eb ? kInf : m.kappa * m.G * sec.A, m.rho * sec.A, eb ? 0.0 : m.rho * sec.Iy, s.geometry.length};
+  BeamBending out;
+  out.L = s.geometry.length;
+  for (const Segment& p : s.beam_pieces()) {
+    const Section sec = p.properties();
+    const Material& m = p.material;
+    const BendingStep b{p.x_from, m.E * (sec.*I), eb ? kInf : m.kappa * m.G * sec.A, m.rho * sec.A,
+                        eb ? 0.0 : m.rho * (sec.*I)};
+    if (p.x_from == 0.0) {
+      out.EI = b.EI;
+      out.kGA = b.kGA;
+      out.rhoA = b.rhoA;
+      out.rhoI = b.rhoI;
+    } else {
+      out.steps.push_back(b);
+    }
+  }
+  return out;
 }
 
-BeamBending bending_xy(const Scene& s) {
-  const Section sec = s.section();
-  const auto& m = s.material;
-  const bool eb = s.theory == Theory::EulerBernoulli;
-  return {m.E * sec.Iz, eb ? kInf : m.kappa * m.G * sec.A, m.rho * sec.A, eb ? 0.0 : m.rho * sec.Iz, s.geometry.length};
+/// A scene's beam as a bar, piece by piece: stiffness and inertia per length from the piece.
+Bar bar_of(const Scene& s, const std::function<std::pair<double, double>(const Segment&)>& props) {
+  Bar out;
+  out.L = s.geometry.length;
+  for (const Segment& p : s.beam_pieces()) {
+    const auto [S, mu] = props(p);
+    if (p.x_from == 0.0) {
+      out.S = S;
+      out.mu = mu;
+    } else {
+      out.steps.push_back({p.x_from, S, mu});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+BeamBending BeamBending::at(double x) const {
+  BeamBending b{EI, kGA, rhoA, rhoI, L, {}};
+  for (const BendingStep& s : steps)
+    if (x >= s.x_from) b = {s.EI, s.kGA, s.rhoA, s.rhoI, L, {}};
+  return b;
+}
+
+Bar Bar::at(double x) const {
+  Bar b{S, mu, L, {}};
+  for (const BarStep& s : steps)
+    if (x >= s.x_from) b = {s.S, s.mu, L, {}};
+  return b;
+}
+
+BeamBending bending_xz(const Scene& s) { return bending_of(s, &Section::Iy); }
+BeamBending bending_xy(const Scene& s) { return bending_of(s, &Section::Iz); }
+
+Bar axial_bar(const Scene& s) {
+  return bar_of(s, [](const Segment& p) {
+    const Section sec = p.properties();
+    return std::pair{p.material.E * sec.A, p.material.rho * sec.A};
+  });
+}
+
+Bar torsion_bar(const Scene& s) {
+  return bar_of(s, [](const Segment& p) {
+    const Section sec = p.properties();
+    return std::pair{p.material.G * sec.J, p.material.rho * sec.Ip};
+  });
 }
 
 }  // namespace modalbench::exact

@@ -51,15 +51,6 @@ struct ModeList {
   void add(const Frequencies& f, ModeFamily fam) { add(f.omega_rad_s, f.rigid, fam); }
 };
 
-Bar axial_bar(const Scene& s) {
-  const Section sec = s.section();
-  return {s.material.E * sec.A, s.material.rho * sec.A, s.geometry.length};
-}
-Bar torsion_bar(const Scene& s) {
-  const Section sec = s.section();
-  return {s.material.G * sec.J, s.material.rho * sec.Ip, s.geometry.length};
-}
-
 /// Count evaluations and the largest dynamic stiffness factorized.
 void note(Result& r, const Frequencies& f) {
   r.summary.set_diagnostic("count_evaluations", std::max(0.0, r.summary.diagnostic("count_evaluations")) +
@@ -120,18 +111,29 @@ void beam_statics(const Scene& s, Result& r) {
     for (std::size_t i = 0; i < xs.size(); ++i) {
       defl[i].w = wz[i].w;
       defl[i].theta_y = wz[i].theta;
+      defl[i].has_forces = true;
+      defl[i].forces.My = wz[i].M;
+      defl[i].forces.Qz = wz[i].Q;
     }
     if (s.physics != Physics::Bending) {
-      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da, &ra);
-      for (std::size_t i = 0; i < xs.size(); ++i) defl[i].u = u[i];
+      std::vector<double> N;
+      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da, &ra, &N);
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        defl[i].u = u[i];
+        defl[i].forces.N = N[i];
+      }
     }
     if (s.physics == Physics::Spatial) {
       auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy, &ry);
-      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt);
+      std::vector<double> T;
+      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt, &T);
       for (std::size_t i = 0; i < xs.size(); ++i) {
         defl[i].v = wy[i].w;
         defl[i].theta_z = wy[i].theta;
         defl[i].theta_x = t[i];
+        defl[i].forces.Mz = wy[i].M;
+        defl[i].forces.Qy = wy[i].Q;
+        defl[i].forces.T = T[i];
       }
     }
     r.deflections = defl;
@@ -228,14 +230,29 @@ void navier_statics(const Scene& s, int terms, Result& r) {
   for (const DistributedLoad& q : s.all_distributed_loads())
     patches.push_back({q.from[0], q.to[0], q.from[1], q.to[1], q.qz[0]});
   double scale = 0, worst_tail = 0;
+  const double nu = s.material.nu;
   for (const auto& p : s.request.probes) {
-    double tail = 0;
-    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail, patches);
+    double tail = 0, curvature_tail = 0;
+    std::array<double, 3> c{};
+    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail, patches, &c, &curvature_tail);
     Deflection d;
     d.position = p;
     d.w = w[0];
     d.theta_x = w[2];   // rotation about x: +dw/dy
     d.theta_y = -w[1];  // rotation about y: -dw/dx
+    // The moments (result.hpp) where their series has converged to the tolerance.
+    d.forces.mx = D * (c[0] + nu * c[1]);
+    d.forces.my = D * (c[1] + nu * c[0]);
+    d.forces.mxy = D * (1 - nu) * c[2];
+    const double m_scale = std::max({std::abs(d.forces.mx), std::abs(d.forces.my), std::abs(d.forces.mxy)});
+    d.has_forces = D * (1 + std::abs(nu)) * curvature_tail <= s.request.tolerance * m_scale;
+    if (!d.has_forces) {
+      d.forces = {};
+      r.summary.warnings.push_back(fmt::format(
+          "plate moments at ({:g}, {:g}) m not given: their Navier series at {} x {} terms is uncertain by {:.1e} N*m/m "
+          "(under a point force Kirchhoff's moments are infinite)",
+          p[0], p[1], terms, terms, D * (1 + std::abs(nu)) * curvature_tail));
+    }
     r.deflections.push_back(d);
     worst_tail = std::max(worst_tail, tail);
     scale = std::max(scale, std::abs(w[0]));
@@ -308,9 +325,11 @@ ModeShapes shapes_frame(const Scene& s) {
   ModeShapes out;
   out.points = s.shape_points();
   out.components = s.shape_components();
-  const Section sec = s.section();
-  out.total_mass = s.is_beam() ? s.material.rho * sec.A * s.geometry.length
-                               : s.material.rho * s.geometry.height * s.geometry.length * s.geometry.width;
+  out.total_mass = s.material.rho * s.geometry.height * s.geometry.length * s.geometry.width;
+  if (s.is_beam()) {
+    out.total_mass = 0;
+    for (const Segment& p : s.beam_pieces()) out.total_mass += p.material.rho * p.properties().A * p.length();
+  }
   out.directions = {s.is_beam() && s.physics != Physics::Bending, s.is_beam() && s.physics == Physics::Spatial, true};
   return out;
 }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -14,7 +15,8 @@ namespace modalbench::exact::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Dimensionless Timoshenko line (xi = x / L, w_bar = w / L, forces scaled by EI / L^2, EI / L).
+/// Dimensionless Timoshenko line (xi = x / L, w_bar = w / L, forces scaled by EI / L^2, EI / L,
+/// with EI, rhoA those of the first piece of a stepped beam).
 struct BendingLine {
   double s;       // EI / (kGA L^2)
   double r;       // rhoI / (rhoA L^2)
@@ -36,20 +38,40 @@ struct BendingLine {
       sys.attachments.push_back({p.x / b.L,
                                  {scaled(p.springs.translational, kt), scaled(p.springs.rotational, kr)},
                                  {p.mass * kt, p.inertia * kr}});
-    const double ss = s, rr = r, c = lam_to_Omega2;
-    sys.state_matrix = [ss, rr, c](double lambda) {
+    set_piece(b, b, sys.state_matrix, sys.max_wavenumber);
+    for (const BendingStep& st : b.steps) {
+      if (!(st.EI > 0 && st.rhoA > 0 && st.kGA > 0 && st.rhoI >= 0 && st.x_from > 0 && st.x_from < b.L))
+        throw std::invalid_argument("beam step properties must be positive, the step inside the beam");
+      LinePiece piece;
+      piece.xi_from = st.x_from / b.L;
+      set_piece(b, b.at(st.x_from), piece.state_matrix, piece.max_wavenumber);
+      sys.steps.push_back(piece);
+    }
+  }
+  /// The state matrix of a piece with properties `own`, in the units of the first piece `ref`:
+  /// w' = phi + (EI0 / (kGA L^2)) Q, phi' = (EI0 / EI) M, Q' = -(rhoA / rhoA0) O2 w,
+  /// M' = -(rhoI / (rhoA0 L^2)) O2 phi - Q, with O2 = lambda rhoA0 L^4 / EI0; its wavenumber bound
+  /// is the piece's own (a diagonal scaling of the state leaves A's eigenvalues as they are).
+  static void set_piece(const BeamBending& ref, const BeamBending& own,
+                        std::function<Eigen::MatrixXd(double)>& state_matrix, std::function<double(double)>& wavenumber) {
+    const double L2 = ref.L * ref.L, c = ref.rhoA * L2 * L2 / ref.EI;
+    const double ss = std::isinf(own.kGA) ? 0.0 : ref.EI / (own.kGA * L2), inv_e = ref.EI / own.EI;
+    const double a = own.rhoA / ref.rhoA, rr = own.rhoI / (ref.rhoA * L2);
+    state_matrix = [ss, rr, c, inv_e, a](double lambda) {
       const double O2 = lambda * c;
       Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4);
       // y = [w, phi, Q, M]
       A(0, 1) = 1.0; A(0, 2) = ss;
-      A(1, 3) = 1.0;
-      A(2, 0) = -O2;
+      A(1, 3) = inv_e;
+      A(2, 0) = -a * O2;
       A(3, 1) = -rr * O2; A(3, 2) = -1.0;
       return A;
     };
-    sys.max_wavenumber = [ss, rr, c](double lambda) {
-      const double O2 = std::abs(lambda) * c;
-      return std::sqrt(O2 * (ss + rr) + std::sqrt(O2));
+    const double s_own = std::isinf(own.kGA) ? 0.0 : own.EI / (own.kGA * L2), r_own = own.rhoI / (own.rhoA * L2);
+    const double c_own = own.rhoA * L2 * L2 / own.EI / c;  // O2_own = O2 c_own
+    wavenumber = [s_own, r_own, c_own, c](double lambda) {
+      const double O2 = std::abs(lambda) * c * c_own;
+      return std::sqrt(O2 * (s_own + r_own) + std::sqrt(O2));
     };
   }
   static double scaled(double k, double factor) { return std::isinf(k) ? kInf : k * factor; }
@@ -69,13 +91,26 @@ struct BarLine {
     for (const PointAttachment& p : points)
       sys.attachments.push_back({p.x / b.L, {std::isinf(p.springs.translational) ? kInf : p.springs.translational * f},
                                  {p.mass * f}});
-    const double c = lam_to_Omega2;
-    sys.state_matrix = [c](double lambda) {
+    set_piece(b, b, sys.state_matrix, sys.max_wavenumber);
+    for (const BarStep& st : b.steps) {
+      if (!(st.S > 0 && st.mu > 0 && st.x_from > 0 && st.x_from < b.L))
+        throw std::invalid_argument("bar step properties must be positive, the step inside the bar");
+      LinePiece piece;
+      piece.xi_from = st.x_from / b.L;
+      set_piece(b, b.at(st.x_from), piece.state_matrix, piece.max_wavenumber);
+      sys.steps.push_back(piece);
+    }
+  }
+  /// u' = (S0 / S) N, N' = -(mu / mu0) lambda c u in the first piece's units (as BendingLine).
+  static void set_piece(const Bar& ref, const Bar& own, std::function<Eigen::MatrixXd(double)>& state_matrix,
+                        std::function<double(double)>& wavenumber) {
+    const double c = ref.mu * ref.L * ref.L / ref.S, inv_e = ref.S / own.S, a = own.mu / ref.mu;
+    state_matrix = [c, inv_e, a](double lambda) {
       Eigen::MatrixXd A(2, 2);
-      A << 0.0, 1.0, -lambda * c, 0.0;
+      A << 0.0, inv_e, -a * lambda * c, 0.0;
       return A;
     };
-    sys.max_wavenumber = [c](double lambda) { return std::sqrt(std::abs(lambda) * c); };
+    wavenumber = [k = c * a * inv_e](double lambda) { return std::sqrt(std::abs(lambda) * k); };
   }
 };
 

@@ -55,10 +55,11 @@ std::complex<double> navier_receptance(double a, double b, double D, double rho_
 }
 
 std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
-                                    double x, double y, int terms, double* tail, const std::vector<PressurePatch>& patches) {
+                                    double x, double y, int terms, double* tail, const std::vector<PressurePatch>& patches,
+                                    std::array<double, 3>* curvature, double* curvature_tail) {
   // w = sum_mn W_mn sin(m pi x/a) sin(n pi y/b), W_mn = P_mn / (D pi^4 q^2), P_mn the load's
   // coefficient: 4 F sin sin / (a b) for a point force, the patch's closed form (header).
-  std::array<double, 3> out{0, 0, 0}, half{0, 0, 0};
+  std::array<double, 3> out{0, 0, 0}, half{0, 0, 0}, curv{0, 0, 0}, curv_half{0, 0, 0};
   std::vector<double> sx(terms + 1), cx(terms + 1), sy(terms + 1), cy(terms + 1);
   for (int m = 1; m <= terms; ++m) {
     sx[m] = std::sin(m * pi * x / a);
@@ -92,13 +93,23 @@ std::array<double, 3> navier_static(double a, double b, double D, const std::vec
       for (int n = 1; n <= terms; ++n) {
         const double q = std::pow(m / a, 2) + std::pow(n / b, 2);
         const double W = l.fx[m] * l.fy[n] / (D * std::pow(pi, 4) * q * q);
-        const std::array<double, 3> t = {W * sx[m] * sy[n], W * (m * pi / a) * cx[m] * sy[n], W * (n * pi / b) * sx[m] * cy[n]};
+        const double km = m * pi / a, kn = n * pi / b;
+        const std::array<double, 3> t = {W * sx[m] * sy[n], W * km * cx[m] * sy[n], W * kn * sx[m] * cy[n]};
+        const std::array<double, 3> c = {-W * km * km * sx[m] * sy[n], -W * kn * kn * sx[m] * sy[n], W * km * kn * cx[m] * cy[n]};
+        const bool in_half = 2 * m <= terms && 2 * n <= terms;
         for (int k = 0; k < 3; ++k) {
           out[k] += t[k];
-          if (2 * m <= terms && 2 * n <= terms) half[k] += t[k];
+          curv[k] += c[k];
+          if (in_half) {
+            half[k] += t[k];
+            curv_half[k] += c[k];
+          }
         }
       }
   if (tail) *tail = std::abs(out[0] - half[0]);
+  if (curvature) *curvature = curv;
+  if (curvature_tail)
+    *curvature_tail = std::max({std::abs(curv[0] - curv_half[0]), std::abs(curv[1] - curv_half[1]), std::abs(curv[2] - curv_half[2])});
   return out;
 }
 

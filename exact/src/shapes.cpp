@@ -36,6 +36,16 @@ void add_point_masses(const PointAttachments& points, const std::function<std::p
   }
 }
 
+/// The sum over a stepped beam's pieces of f(x1, x2, piece) (a uniform beam: one piece).
+double over_pieces(const BeamBending& beam, const std::function<double(double, double, const BeamBending&)>& f) {
+  std::vector<double> ends = {0.0};
+  for (const BendingStep& s : beam.steps) ends.push_back(s.x_from);
+  ends.push_back(beam.L);
+  double sum = 0;
+  for (std::size_t i = 0; i + 1 < ends.size(); ++i) sum += f(ends[i], ends[i + 1], beam.at(ends[i]));
+  return sum;
+}
+
 bool any_spring(const PointAttachments& points) {
   for (const PointAttachment& p : points)
     if (p.springs.translational > 0 || p.springs.rotational > 0) return true;
@@ -55,7 +65,8 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     // the free pair's rotation about the centre of mass (M-orthogonal to the translation).
     const bool rotation_restrained = left.rotational > 0 || right.rotational > 0;
     bool rotation = false;
-    double total = beam.rhoA * L, moment = beam.rhoA * L * L / 2;
+    double total = over_pieces(beam, [](double a, double b, const BeamBending& p) { return p.rhoA * (b - a); });
+    double moment = over_pieces(beam, [](double a, double b, const BeamBending& p) { return p.rhoA * (b * b - a * a) / 2; });
     for (const PointAttachment& p : points) {
       total += p.mass;
       moment += p.mass * p.x;
@@ -72,11 +83,17 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
       out.rot.push_back(rotation ? 1.0 : 0.0);
     }
     if (rotation) {
-      const double c0 = -pivot, c1 = L - pivot;  // int (x - pivot)^2 dx over [0, L]
-      out.modal_mass = beam.rhoA * (c1 * c1 * c1 - c0 * c0 * c0) / 3.0 + beam.rhoI * L;
-      out.participation = beam.rhoA * 0.5 * (c1 * c1 - c0 * c0);
+      out.modal_mass = over_pieces(beam, [pivot](double a, double b, const BeamBending& p) {
+        const double c0 = a - pivot, c1 = b - pivot;  // int (x - pivot)^2 dx over the piece
+        return p.rhoA * (c1 * c1 * c1 - c0 * c0 * c0) / 3.0 + p.rhoI * (b - a);
+      });
+      out.participation = over_pieces(beam, [pivot](double a, double b, const BeamBending& p) {
+        return p.rhoA * 0.5 * ((b - pivot) * (b - pivot) - (a - pivot) * (a - pivot));
+      });
     } else {
-      out.modal_mass = out.participation = beam.rhoA * L;
+      out.modal_mass = out.participation = over_pieces(beam, [](double a, double b, const BeamBending& p) {
+        return p.rhoA * (b - a);
+      });
     }
     add_point_masses(points, [&](double x) { return std::pair{rotation ? x - pivot : 1.0, rotation ? 1.0 : 0.0}; }, out);
     return out;
@@ -89,10 +106,11 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     out.disp.push_back(d[0] * L);  // w_bar = w / L
     out.rot.push_back(d[1]);
   }
-  out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double) {
-    return beam.rhoA * d[0] * d[0] * L * L + beam.rhoI * d[1] * d[1];
+  out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) {
+    const BeamBending p = beam.at(xi * L);
+    return p.rhoA * d[0] * d[0] * L * L + p.rhoI * d[1] * d[1];
   });
-  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return beam.rhoA * d[0] * L; });
+  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) { return beam.at(xi * L).rhoA * d[0] * L; });
   add_point_masses(points, [&](double x) {
     const Eigen::VectorXd d = mode.displacement(x / L);
     return std::pair{d[0] * L, d[1]};
@@ -107,7 +125,13 @@ LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega,
   if (omega == 0.0) {
     out.disp.assign(xs.size(), 1.0);
     out.rot.assign(xs.size(), 0.0);
-    out.modal_mass = out.participation = bar.mu * L;
+    // The bar's mass, piece by piece.
+    double mass = 0, a = 0;
+    for (const BarStep& st : bar.steps) {
+      mass += bar.at(a).mu * (st.x_from - a);
+      a = st.x_from;
+    }
+    out.modal_mass = out.participation = mass + bar.at(a).mu * (L - a);
     add_point_masses(points, [](double) { return std::pair{1.0, 0.0}; }, out);
     return out;
   }
@@ -118,8 +142,8 @@ LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega,
     out.disp.push_back(mode.displacement(x / L)[0]);
     out.rot.push_back(0.0);
   }
-  out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return bar.mu * d[0] * d[0]; });
-  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double) { return bar.mu * d[0]; });
+  out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) { return bar.at(xi * L).mu * d[0] * d[0]; });
+  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) { return bar.at(xi * L).mu * d[0]; });
   add_point_masses(points, [&](double x) { return std::pair{mode.displacement(x / L)[0], 0.0}; }, out);
   return out;
 }

@@ -1,5 +1,7 @@
 #include "modalbench/rfem/builders.hpp"
 
+#include "beam_cells.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -41,8 +43,9 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
   if (!s.is_beam()) throw std::invalid_argument("build_beam: the scene is not a beam");
   if (n < 1) throw std::invalid_argument(fmt::format("build_beam: need >= 1 segment (got {})", n));
   const double L = s.geometry.length, bw = s.geometry.width, bh = s.geometry.height;
-  const Section sec = s.section();
+  const Section sec = s.section();  // the first piece's (characteristic frequency only)
   const Material& mat = s.material;
+  const std::vector<Segment> pieces = s.beam_pieces();
   const bool eb = s.theory == Theory::EulerBernoulli;
   const double d = L / n;
 
@@ -67,43 +70,51 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
   for (int j = 0; j <= n; ++j) {
     RigidElement r;
     const double x = j * d;
-    const double len = (j == 0 || j == n) ? d / 2 : d;
+    const double lo = std::max(0.0, x - d / 2), hi = std::min(L, x + d / 2);
     r.centre = Vector3d(x, 0, 0);
-    r.mass = mat.rho * sec.A * len;
-    const double own = r.mass * len * len / 12.0;  // the element's length about its centre
-    r.inertia = Vector3d(mat.rho * sec.Ip * len, own + (eb ? 0.0 : mat.rho * sec.Iy * len),
-                         own + (eb ? 0.0 : mat.rho * sec.Iz * len));
-    r.cell = box(std::max(0.0, x - d / 2), std::min(L, x + d / 2), -bw / 2, bw / 2, -bh / 2, bh / 2);
+    // The piece(s) of beam it stands for; its length's inertia about the cell's middle.
+    const detail::CellMass cm = detail::cell_mass(pieces, lo, hi, 0.5 * (lo + hi));
+    r.mass = cm.mass;
+    r.inertia = Vector3d(cm.rho_Ip, cm.length_inertia + (eb ? 0.0 : cm.rho_Iy), cm.length_inertia + (eb ? 0.0 : cm.rho_Iz));
+    r.cell = box(lo, hi, -bw / 2, bw / 2, -bh / 2, bh / 2);
     r.label = fmt::format("rfe {}", j);
     m.elements.push_back(r);
     m.grid.x.push_back(x);
     m.grid.element.push_back(j);
   }
   m.grid.y = {0.0};
-  // Slope jumps of the second-order fields under their own point actions (PointSingularity).
-  auto kink = [&](int dof, double stiffness) {
-    if (std::find(m.active.begin(), m.active.end(), dof) == m.active.end()) return;
-    m.singularities.push_back({dof, dof, PointSingularity::Kind::Kink, 0.5 / stiffness});
-  };
-  kink(dofs::Ux, mat.E * sec.A);
-  if (!eb) {
-    kink(dofs::Uz, mat.kappa * mat.G * sec.A);
-    kink(dofs::Uy, mat.kappa * mat.G * sec.A);
+  // Slope jumps of the second-order fields under their own point actions (PointSingularity), with
+  // the stiffness of the piece the action is on.
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const Segment& p = pieces[i];
+    const Section ps = p.properties();
+    const Material& pm = p.material;
+    const double from = i == 0 ? -kInf : p.x_from, to = i + 1 == pieces.size() ? kInf : p.x_to;
+    auto kink = [&](int dof, double stiffness) {
+      if (std::find(m.active.begin(), m.active.end(), dof) == m.active.end()) return;
+      m.singularities.push_back({dof, dof, PointSingularity::Kind::Kink, 0.5 / stiffness,
+                                 PointSingularity::Derivative::None, from, to});
+    };
+    kink(dofs::Ux, pm.E * ps.A);
+    if (!eb) {
+      kink(dofs::Uz, pm.kappa * pm.G * ps.A);
+      kink(dofs::Uy, pm.kappa * pm.G * ps.A);
+    }
+    kink(dofs::Rx, pm.G * ps.J);
+    kink(dofs::Ry, pm.E * ps.Iy);
+    kink(dofs::Rz, pm.E * ps.Iz);
   }
-  kink(dofs::Rx, mat.G * sec.J);
-  kink(dofs::Ry, mat.E * sec.Iy);
-  kink(dofs::Rz, mat.E * sec.Iz);
-  // SDEs at the segment middles.
-  const double kGA = mat.kappa * mat.G * sec.A;
+  // SDEs at the segment middles: the segment's stiffnesses in series over its pieces.
   for (int j = 0; j < n; ++j) {
     Sde sd;
     sd.a = j;
     sd.b = j + 1;
     sd.point = Vector3d((j + 0.5) * d, 0, 0);
+    const detail::CellStiffness k = detail::cell_stiffness(pieces, j * d, (j + 1) * d);
     // Euler-Bernoulli: rigid shear (+inf: exact constraints), or none when the joint coordinates
     // satisfy it identically.
-    const double shear = !eb ? kGA / d : joints ? 0.0 : kInf;
-    sd.stiffness << mat.E * sec.A / d, shear, shear, mat.G * sec.J / d, mat.E * sec.Iy / d, mat.E * sec.Iz / d;
+    const double shear = !eb ? k.kGA : joints ? 0.0 : kInf;
+    sd.stiffness << k.EA, shear, shear, k.GJ, k.EIy, k.EIz;
     m.sdes.push_back(sd);
   }
   // End supports: SDEs to ground at the end points (the end RFEs' centres).

@@ -130,7 +130,7 @@ double point_correction(const Model& m, const Eigen::Vector3d& P, int observed, 
   double total = 0;
   std::vector<std::pair<int, double>> wp, wq;
   for (const auto& s : m.singularities) {
-    if (s.observed != observed || s.load != load) continue;
+    if (s.observed != observed || s.load != load || !(Q.x() >= s.x_from && Q.x() < s.x_to)) continue;
     if (wp.empty()) {
       wp = point_weights(m, P);
       wq = point_weights(m, Q);

@@ -60,13 +60,34 @@ Capability RfemSolver::supports(const Scene& s) const {
   return c;
 }
 
+namespace {
+
+/// The smallest n' in [n, 2n) whose element centres or cell boundaries (x = j L / (2 n')) hold every
+/// step, support between the ends and point mass of a beam (halving then keeps most of them there),
+/// or n where none does.
+int beam_mesh_on_features(const Scene& s, int n) {
+  std::vector<double> at;
+  for (std::size_t i = 1; i < s.segments.size(); ++i) at.push_back(s.segments[i].x_from / s.geometry.length);
+  for (const PointSupport& p : s.point_supports) at.push_back(p.x / s.geometry.length);
+  for (const PointMass& p : s.masses) at.push_back(p.x / s.geometry.length);
+  if (at.empty()) return n;
+  for (int m = n; m < 2 * n; m += 2) {
+    bool all = true;
+    for (double t : at) all = all && std::abs(t * 2 * m - std::round(t * 2 * m)) <= 1e-9 * 2 * m;
+    if (all) return m;
+  }
+  return n;
+}
+
+}  // namespace
+
 Discretization RfemSolver::default_mesh(const Scene& s) const {
   const int k = std::max(1, s.request.modes);
   if (s.is_beam()) {
     // About 32 segments per half-wave of the highest requested mode (second order: ~1e-3).
     int n = 128;
     while (n < 32L * (k + 1) && n < (1 << 17)) n *= 2;
-    return {{n}};
+    return {{beam_mesh_on_features(s, n)}};
   }
   // Half-waves of the first k modes of the plate (simply supported pattern), ~10 fragments per
   // half-wave in each direction, and cells no more elongated than 3 : 1.

@@ -1116,7 +1116,8 @@ def check_success(obj: dict, scene: dict | None) -> list[str]:
     for i, d in enumerate(obj.get("deflections") or []):
         if isinstance(d, dict):
             for k, v in d.items():
-                for j, x in enumerate(v if isinstance(v, list) else [v]):
+                values = list(v.values()) if isinstance(v, dict) else v if isinstance(v, list) else [v]  # forces: a dict
+                for x in values:
                     if not _finite(x):
                         bad.append(f"deflections[{i}].{k} is {x!r}")
     for i, d in enumerate(obj.get("frf") or []):

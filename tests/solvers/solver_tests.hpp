@@ -1,10 +1,12 @@
 #pragma once
-// What the solver-level tests share: the registry of every back-end, a relative difference, and
-// the check that a scene text is refused with the key and reason named.
+// What the solver-level tests share: the registry of every back-end, a relative difference, the
+// check that a scene text is refused with the key and reason named, and roots of a scalar function.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "modalbench/registry.hpp"
 
@@ -26,6 +28,28 @@ inline void expect_input_error(const std::string& text, const std::string& key, 
     BOOST_TEST(e.key() == key, e.what());
     BOOST_TEST(e.reason().find(reason) != std::string::npos, e.what());
   }
+}
+
+/// Roots of f in (lo, hi), by sign changes on a fine grid and bisection to rounding (a sign change
+/// through a pole, where |f| stays large, is not a root).
+inline std::vector<double> roots(const std::function<double(double)>& f, double lo, double hi, int count) {
+  std::vector<double> out;
+  const int n = 20000;
+  double a = lo, fa = f(a);
+  for (int i = 1; i <= n && static_cast<int>(out.size()) < count; ++i) {
+    const double c = lo + (hi - lo) * i / n, fc = f(c);
+    if ((fa < 0) != (fc < 0)) {
+      double x0 = a, x1 = c, f0 = fa;
+      for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (x0 + x1), fm = f(mid);
+        if ((fm < 0) == (f0 < 0)) x0 = mid, f0 = fm;
+        else x1 = mid;
+      }
+      if (std::abs(f(0.5 * (x0 + x1))) < 1e-6) out.push_back(0.5 * (x0 + x1));
+    }
+    a = c, fa = fc;
+  }
+  return out;
 }
 
 }  // namespace modalbench::solver_tests

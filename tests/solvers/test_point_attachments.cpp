@@ -46,28 +46,6 @@ rho = 7850.0
 )" + supports + "\n" + extra + "\n[request]\nmodes = " + std::to_string(modes) + "\n" + probes;
 }
 
-/// Roots of f in (lo, hi), by sign changes on a fine grid and bisection to rounding (a sign change
-/// through a pole, where |f| stays large, is not a root).
-std::vector<double> roots(const std::function<double(double)>& f, double lo, double hi, int count) {
-  std::vector<double> out;
-  const int n = 20000;
-  double a = lo, fa = f(a);
-  for (int i = 1; i <= n && static_cast<int>(out.size()) < count; ++i) {
-    const double c = lo + (hi - lo) * i / n, fc = f(c);
-    if ((fa < 0) != (fc < 0)) {
-      double x0 = a, x1 = c, f0 = fa;
-      for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (x0 + x1), fm = f(mid);
-        if ((fm < 0) == (f0 < 0)) x0 = mid, f0 = fm;
-        else x1 = mid;
-      }
-      if (std::abs(f(0.5 * (x0 + x1))) < 1e-6) out.push_back(0.5 * (x0 + x1));
-    }
-    a = c, fa = fc;
-  }
-  return out;
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(tip_mass_cantilever) {

@@ -29,11 +29,25 @@ int severity(Status);
 enum class ModeFamily { BendingXZ, BendingXY, Axial, Torsion, Plate, Rigid, Unknown };
 std::string to_string(ModeFamily);  ///< bending-xz, bending-xy, axial, torsion, plate, rigid, unknown
 
+/// Stress resultants at one point of the structure under the static loads.
+/// Beam (N, N*m): axial force N (tension positive); bending moments My = EI_y w'' (x-z) and
+/// Mz = EI_z v'' (x-y), so a sagging moment (concave towards +z, or +y) is positive; shear forces
+/// Qz = dMy/dx and Qy = dMz/dx; torque T = GJ theta_x'. Plate (per unit length, N*m/m):
+/// mx = D (w_xx + nu w_yy), my = D (w_yy + nu w_xx) (sagging positive) and mxy = D (1 - nu) w_xy
+/// (Kirchhoff; a Mindlin plate the same with the rotations' derivatives). Where a point action or a
+/// support sits at the probe, the value just beyond it (x + 0; at x = L, x - 0).
+struct InternalForces {
+  double N = 0, Qy = 0, Qz = 0, T = 0, My = 0, Mz = 0;
+  double mx = 0, my = 0, mxy = 0;
+};
+
 /// Static response at one probe. Components a scene does not carry stay 0.
 struct Deflection {
   std::array<double, 2> position{};  ///< beam: {x, 0}; plate: {x, y}, m
   double u = 0, v = 0, w = 0;        ///< m
   double theta_x = 0, theta_y = 0, theta_z = 0;  ///< rad, right-handed about the axes
+  bool has_forces = false;  ///< whether `forces` was computed (the back-end gives them for this scene)
+  InternalForces forces;
 };
 
 /// What one support (an end or edge, or a support between them) exerts on the structure under the

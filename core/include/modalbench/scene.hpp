@@ -125,6 +125,19 @@ Section section_properties(const Geometry& g, const SectionSpec& spec);
 /// and of a tube with m = d / D, 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu) (1 + m^2)^2 + (20 + 12 nu) m^2).
 double cowper_kappa_tube(double nu, double m);
 
+/// One piece of a stepped beam (`[[segments]]`): over [x_from, x_to] (m), with its own section
+/// (`width` x `height` for a rectangle, and the section's extent otherwise, as Geometry's) and its
+/// own material (the scene's, with the keys the piece overrides). Scene::beam_pieces gives every
+/// beam as such pieces.
+struct Segment {
+  double x_from = 0, x_to = 0;
+  double width = 0, height = 0;
+  SectionSpec section;
+  Material material;
+  Section properties() const { return section_properties({x_to - x_from, width, height}, section); }
+  double length() const { return x_to - x_from; }
+};
+
 /// A static point load. Beam: at x. Plate: at (x, y); only Fz is meaningful.
 struct PointLoad {
   double x = 0, y = 0;
@@ -205,6 +218,10 @@ struct Scene {
   Material material;
   /// Beam: ends x0, xL. Plate: edges x0, xL (normal x), y0, yB (normal y).
   Support x0, xL, y0, yB;
+  /// Beams: the pieces of a stepped beam, from x = 0 to the length, in order (empty: uniform, the
+  /// section and material above). When given, geometry.width and height are the largest extent
+  /// over the pieces and cross_section / material are the first piece's: use beam_pieces().
+  std::vector<Segment> segments;
   std::vector<PointSupport> point_supports;  ///< beams: supports between the ends, by ascending x
   std::vector<PointMass> masses;             ///< beams: point masses, by ascending x
   std::vector<PointLoad> loads;
@@ -221,6 +238,10 @@ struct Scene {
   bool is_beam() const { return kind == SceneKind::Beam; }
   bool is_plate() const { return kind == SceneKind::Plate; }
   Section section() const { return section_properties(geometry, cross_section); }
+  /// A beam's pieces: `segments`, or the uniform beam as one piece over [0, length].
+  std::vector<Segment> beam_pieces() const;
+  /// A stepped beam (more than one piece).
+  bool is_stepped() const { return segments.size() > 1; }
   /// Every point load: `loads` and, under gravity, the weight of each point mass (m g at its x).
   std::vector<PointLoad> all_point_loads() const;
   /// Every distributed load: `line_loads` (beam) or `pressures` (plate) and, under gravity, the

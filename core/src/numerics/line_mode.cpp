@@ -19,6 +19,10 @@ LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
   LineSystem fixed = sys;
   const double p = sys.max_wavenumber(lambda);
   fixed.max_wavenumber = [p](double) { return p; };
+  for (LinePiece& piece : fixed.steps) {
+    const double q = piece.max_wavenumber(lambda);
+    piece.max_wavenumber = [q](double) { return q; };
+  }
   const AssembledLine shifted = assemble(fixed, sigma);
   const long n = static_cast<long>(shifted.xi.size()) * m_;
   // A deterministic start with every component present.
@@ -32,12 +36,12 @@ LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
   }
   // The fields at lambda itself, from the nodal displacements (same nodes: one discretization).
   xi_ = shifted.xi;
-  A_ = sys.state_matrix(lambda);
   const std::size_t nodes = xi_.size();
   y_.assign(nodes, Eigen::VectorXd::Zero(2 * m_));
   for (std::size_t i = 0; i + 1 < nodes; ++i) {
     const double h = xi_[i + 1] - xi_[i];
-    const Eigen::MatrixXd K = segment_dynamic_stiffness(A_, h);
+    A_.push_back(sys.state_matrix_at(lambda, 0.5 * (xi_[i] + xi_[i + 1])));
+    const Eigen::MatrixXd K = segment_dynamic_stiffness(A_.back(), h);
     Eigen::VectorXd dd(2 * m_);
     dd << v.segment(static_cast<long>(i) * m_, m_), v.segment(static_cast<long>(i + 1) * m_, m_);
     const Eigen::VectorXd fk = K * dd;  // [-f(0); f(h)]
@@ -50,8 +54,8 @@ LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
   }
 }
 
-Eigen::MatrixXd LineMode::transfer(double s) const {
-  Eigen::MatrixXd B = A_ * s;
+Eigen::MatrixXd LineMode::transfer(std::size_t segment, double s) const {
+  Eigen::MatrixXd B = A_[segment] * s;
   const Eigen::VectorXd scale = balance_in_place(B, 20);
   return scale.asDiagonal() * Eigen::MatrixXd(B.exp()) * scale.cwiseInverse().asDiagonal();
 }
@@ -62,7 +66,7 @@ Eigen::VectorXd LineMode::state(double xi) const {
   const auto it = std::upper_bound(xi_.begin(), xi_.end(), xi);
   const std::size_t i = static_cast<std::size_t>(it - xi_.begin()) - 1;
   if (xi == xi_[i]) return y_[i];
-  return transfer(xi - xi_[i]) * y_[i];
+  return transfer(i, xi - xi_[i]) * y_[i];
 }
 
 double LineMode::integrate(const std::function<double(const Eigen::VectorXd& d, double xi)>& g) const {
@@ -73,7 +77,7 @@ double LineMode::integrate(const std::function<double(const Eigen::VectorXd& d, 
   for (std::size_t i = 0; i + 1 < xi_.size(); ++i) {
     const Eigen::VectorXd y0 = y_[i];
     const double x0 = xi_[i], x1 = xi_[i + 1];
-    auto f = [&](double x) { return g((transfer(x - x0) * y0).head(m_), x); };
+    auto f = [&](double x) { return g((transfer(i, x - x0) * y0).head(m_), x); };
     const double size = (x1 - x0) * std::max({std::abs(f(x0)), std::abs(f(0.5 * (x0 + x1))), std::abs(f(x1))});
     const Integral part = modalbench::integrate(f, x0, x1, 1e-12, 1e-13 * size + 1e-300);
     total += part.value;

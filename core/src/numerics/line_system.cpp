@@ -20,7 +20,40 @@ int AssembledLine::node_at(double x) const {
   throw std::invalid_argument("no node at xi = " + std::to_string(x));
 }
 
+int LineSystem::piece_at(double xi) const {
+  int p = -1;
+  for (std::size_t i = 0; i < steps.size(); ++i)
+    if (xi >= steps[i].xi_from) p = static_cast<int>(i);
+  return p;
+}
+
+Eigen::MatrixXd LineSystem::state_matrix_at(double lambda, double xi) const {
+  const int p = piece_at(xi);
+  return p < 0 ? state_matrix(lambda) : steps[static_cast<std::size_t>(p)].state_matrix(lambda);
+}
+
+double LineSystem::max_wavenumber_at(double lambda, double xi) const {
+  const int p = piece_at(xi);
+  return p < 0 ? max_wavenumber(lambda) : steps[static_cast<std::size_t>(p)].max_wavenumber(lambda);
+}
+
 namespace {
+
+/// The state matrices of the line's segments at lambda, one per distinct piece (computed once).
+class PieceMatrices {
+ public:
+  PieceMatrices(const LineSystem& sys, double lambda) : sys_(sys), lambda_(lambda), A_(sys.steps.size() + 1) {}
+  const Eigen::MatrixXd& at(double xi) {
+    const std::size_t p = static_cast<std::size_t>(sys_.piece_at(xi) + 1);
+    if (A_[p].size() == 0) A_[p] = sys_.state_matrix_at(lambda_, xi);
+    return A_[p];
+  }
+
+ private:
+  const LineSystem& sys_;
+  double lambda_;
+  std::vector<Eigen::MatrixXd> A_;
+};
 
 std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
   const int m = sys.m;
@@ -38,13 +71,17 @@ std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
       throw std::invalid_argument("LineSystem: an attachment needs m springs and m masses");
     breaks.push_back(a.xi);
   }
+  for (const LinePiece& piece : sys.steps) {
+    if (!(piece.xi_from > 0.0 && piece.xi_from < 1.0)) throw std::invalid_argument("LineSystem: a step outside (0, 1)");
+    breaks.push_back(piece.xi_from);
+  }
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  const double p = std::max(sys.max_wavenumber(lambda), 1e-12);
-  if (!std::isfinite(p)) throw std::runtime_error("LineSystem: wavenumber bound is not finite");
   std::vector<double> xi = {0.0};
   for (std::size_t g = 0; g + 1 < breaks.size(); ++g) {
     const double len = breaks[g + 1] - breaks[g];
+    const double p = std::max(sys.max_wavenumber_at(lambda, 0.5 * (breaks[g] + breaks[g + 1])), 1e-12);
+    if (!std::isfinite(p)) throw std::runtime_error("LineSystem: wavenumber bound is not finite");
     const double pieces = std::ceil(len * p);
     if (pieces > 1e7) throw std::runtime_error("LineSystem: more than 1e7 segments needed at this frequency");
     const int n = std::max(1, static_cast<int>(pieces));
@@ -82,6 +119,10 @@ Rigid rigid_of(const LineSystem& sys) {
   const Eigen::MatrixXd A0 = sys.state_matrix(0.0);
   if (!(A0.bottomLeftCorner(m, m).array() == 0.0).all()) return R;
   if (!sys.attachments.empty()) return R;  // the split anchors end DOFs only
+  for (const LinePiece& piece : sys.steps) {  // one rigid basis exp(A_dd xi) for every piece
+    const Eigen::MatrixXd Ap = piece.state_matrix(0.0);
+    if (!(Ap.bottomLeftCorner(m, m).array() == 0.0).all() || Ap.topLeftCorner(m, m) != A0.topLeftCorner(m, m)) return R;
+  }
   R.Add = A0.topLeftCorner(m, m);
   struct Candidate {
     int end, dof;
@@ -128,15 +169,18 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
   Split S{BlockTridiagonal(n, m), Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n) * m, m),
           Eigen::MatrixXd::Zero(m, m), {}, {}};
   for (double x : xi) S.Psi.push_back(R.psi(x));
-  const Eigen::MatrixXd A1 = sys.state_matrix(lambda), A0 = sys.state_matrix(0.0);
+  PieceMatrices A1(sys, lambda), A0(sys, 0.0);
   double last_h = -1;
+  int last_piece = -2;
   SegmentDivided seg;
   Eigen::MatrixXd Ps(2 * m, m);
   for (int i = 0; i + 1 < n; ++i) {
-    const double h = xi[i + 1] - xi[i];
-    if (std::abs(h - last_h) > 1e-15 * h) {
-      seg = segment_dynamic_stiffness_divided(A1, A0, lambda, h);
+    const double h = xi[i + 1] - xi[i], mid = 0.5 * (xi[i] + xi[i + 1]);
+    const int piece = sys.piece_at(mid);
+    if (std::abs(h - last_h) > 1e-15 * h || piece != last_piece) {
+      seg = segment_dynamic_stiffness_divided(A1.at(mid), A0.at(mid), lambda, h);
       last_h = h;
+      last_piece = piece;
     }
     S.E.add_segment(i, seg.K);
     if (lambda != 0.0) {
@@ -206,15 +250,18 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
   const int m = sys.m;
   const std::vector<double> xi = line_nodes(sys, lambda);
   AssembledLine out{BlockTridiagonal(static_cast<int>(xi.size()), m), xi};
-  const Eigen::MatrixXd A = sys.state_matrix(lambda);
-  // Equal-length pieces share one segment matrix.
+  PieceMatrices A(sys, lambda);
+  // Equal-length segments of one piece share one segment matrix.
   double last_h = -1;
+  int last_piece = -2;
   Eigen::MatrixXd k_seg;
   for (std::size_t i = 0; i + 1 < xi.size(); ++i) {
-    const double h = xi[i + 1] - xi[i];
-    if (std::abs(h - last_h) > 1e-15 * h) {
-      k_seg = segment_dynamic_stiffness(A, h);
+    const double h = xi[i + 1] - xi[i], mid = 0.5 * (xi[i] + xi[i + 1]);
+    const int piece = sys.piece_at(mid);
+    if (std::abs(h - last_h) > 1e-15 * h || piece != last_piece) {
+      k_seg = segment_dynamic_stiffness(A.at(mid), h);
       last_h = h;
+      last_piece = piece;
     }
     out.K.add_segment(static_cast<int>(i), k_seg);
   }
@@ -347,20 +394,21 @@ void add_point_load(const LineSystem& sys, const AssembledLine& asmb, double lam
     return;
   }
   const double a = asmb.xi[static_cast<std::size_t>(seg)], c = asmb.xi[static_cast<std::size_t>(seg) + 1];
-  const auto [Fa, Fc] = fixed_end(sys.state_matrix(lambda), m, c - a, p.xi - a, p.f);
+  const auto [Fa, Fc] = fixed_end(sys.state_matrix_at(lambda, 0.5 * (a + c)), m, c - a, p.xi - a, p.f);
   // Equivalent nodal loads: minus the fixed-end reactions [-F_a; F_c] of K's convention.
   F.segment(static_cast<Eigen::Index>(seg) * m, m) += Fa;
   F.segment(static_cast<Eigen::Index>(seg + 1) * m, m) -= Fc;
 }
 
-Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
-                                const std::vector<LinePoint>& loads, double x) {
+Eigen::VectorXd state_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
+                         const std::vector<LinePoint>& loads, double x) {
   const int m = sys.m;
   int seg = -1;
   const int node = locate(asmb, x, seg);
-  if (node >= 0) return d.segment(static_cast<Eigen::Index>(node) * m, m);
+  const int last = static_cast<int>(asmb.xi.size()) - 1;
+  if (node >= 0) seg = std::min(node, last - 1);  // a node: the segment beyond it (the last: before it)
   const double a = asmb.xi[static_cast<std::size_t>(seg)], c = asmb.xi[static_cast<std::size_t>(seg) + 1];
-  const Eigen::MatrixXd A = sys.state_matrix(lambda);
+  const Eigen::MatrixXd A = sys.state_matrix_at(lambda, 0.5 * (a + c));
   const Eigen::MatrixXd K = segment_dynamic_stiffness(A, c - a);
   Eigen::VectorXd dd(2 * m);
   dd << d.segment(static_cast<Eigen::Index>(seg) * m, m), d.segment(static_cast<Eigen::Index>(seg + 1) * m, m);
@@ -372,8 +420,18 @@ Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb
   state << dd.head(m), Fa;
   Eigen::VectorXd out = transfer(A, x - a) * state;
   for (const auto& p : loads)
-    if (p.xi > a && p.xi < x) out += transfer(A, x - p.xi).rightCols(m) * (-p.f);  // the jump -f carried to x
-  return out.head(m);
+    if (p.xi > a && p.xi < c && p.xi <= x) out += transfer(A, x - p.xi).rightCols(m) * (-p.f);  // the jump -f carried to x
+  // At a node the displacements are the solution's own (not carried through rounding).
+  if (node >= 0) out.head(m) = d.segment(static_cast<Eigen::Index>(node) * m, m);
+  return out;
+}
+
+Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
+                                const std::vector<LinePoint>& loads, double x) {
+  int seg = -1;
+  const int node = locate(asmb, x, seg);
+  if (node >= 0) return d.segment(static_cast<Eigen::Index>(node) * sys.m, sys.m);
+  return state_at(sys, asmb, lambda, d, loads, x).head(sys.m);
 }
 
 LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint, SliceStats* stats) {

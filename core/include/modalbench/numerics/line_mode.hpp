@@ -31,10 +31,10 @@ class LineMode {
 
  private:
   int m_ = 0;
-  Eigen::MatrixXd A_;
+  std::vector<Eigen::MatrixXd> A_;  ///< per segment (a stepped line's pieces differ)
   std::vector<double> xi_;
   std::vector<Eigen::VectorXd> y_;  ///< state at the left end of each segment (and the last node)
-  Eigen::MatrixXd transfer(double s) const;
+  Eigen::MatrixXd transfer(std::size_t segment, double s) const;
 };
 
 }  // namespace modalbench

@@ -34,12 +34,30 @@ struct LineAttachment {
   std::vector<double> mass;   ///< per DOF, >= 0 (multiplies lambda = omega^2)
 };
 
+/// A piece of a stepped line from xi_from on (to the next piece or 1): its own state matrix and
+/// wavenumber bound (LineSystem's meaning). Its start is a node.
+struct LinePiece {
+  double xi_from = 0;
+  std::function<Eigen::MatrixXd(double lambda)> state_matrix;
+  std::function<double(double lambda)> max_wavenumber;
+};
+
 /// A line field problem in dimensionless form on [0, 1].
 struct LineSystem {
   int m = 0;
-  std::function<Eigen::MatrixXd(double lambda)> state_matrix;  ///< A(lambda), 2m x 2m
+  std::function<Eigen::MatrixXd(double lambda)> state_matrix;  ///< A(lambda), 2m x 2m (the first piece's)
   /// An upper bound on |p| over the eigenvalues p of A(lambda) (sets the segment length).
   std::function<double(double lambda)> max_wavenumber;
+  /// A stepped line: the pieces after the first, by ascending xi_from in (0, 1) (empty: uniform).
+  /// The pieces must share A's kinematic block A_dd(0) (a beam's, whatever its section) for the
+  /// rigid-motion split; lines whose pieces do not are factored as they stand.
+  std::vector<LinePiece> steps;
+  /// The piece holding xi (-1: the first; else an index into steps); a piece's start belongs to it.
+  int piece_at(double xi) const;
+  /// A(lambda) of the piece holding xi (pass a segment's midpoint).
+  Eigen::MatrixXd state_matrix_at(double lambda, double xi) const;
+  /// The wavenumber bound of the piece holding xi.
+  double max_wavenumber_at(double lambda, double xi) const;
   std::vector<double> left_spring, right_spring;  ///< per DOF, dimensionless, [0, inf]
   std::vector<double> nodes_at;  ///< interior positions in (0, 1) that must be nodes (loads, probes)
   /// Supports and masses between (or at) the ends; each is a node. A line with attachments is
@@ -98,6 +116,10 @@ void add_point_load(const LineSystem& sys, const AssembledLine& asmb, double lam
 /// the jumps of the loads in between.
 Eigen::VectorXd displacement_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
                                 const std::vector<LinePoint>& loads, double xi);
+/// The whole state [d; f] (2m entries) at xi of the same solution: f the state's force part just
+/// beyond xi (x + 0: past a point action or support there; at xi = 1, the value at 1 - 0).
+Eigen::VectorXd state_at(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& d,
+                         const std::vector<LinePoint>& loads, double xi);
 
 /// Solves K(lambda) d = f on `asmb` (built by assemble(sys, lambda) or with the same nodes).
 /// Uses the rigid-body split above where the line has rigid motions and its anchored elastic

@@ -20,17 +20,31 @@
 
 namespace modalbench::exact {
 
-/// Bending in one plane. Euler-Bernoulli: kGA = inf and rhoI = 0.
+/// A piece of a stepped beam in one plane, from x_from (m) on: its properties (BeamBending's).
+struct BendingStep {
+  double x_from = 0, EI = 0, kGA = 0, rhoA = 0, rhoI = 0;
+};
+/// Bending in one plane. Euler-Bernoulli: kGA = inf and rhoI = 0. A stepped beam: these are the
+/// first piece's properties, and `steps` the pieces after it (ascending x_from in (0, L)).
 struct BeamBending {
   double EI = 0;    ///< N*m^2
   double kGA = 0;   ///< N (inf for Euler-Bernoulli)
   double rhoA = 0;  ///< kg/m
   double rhoI = 0;  ///< kg*m (rotary inertia per length; 0 for Euler-Bernoulli)
   double L = 0;     ///< m
+  std::vector<BendingStep> steps = {};
+  /// The properties of the piece holding x (as a one-piece BeamBending of length L).
+  BeamBending at(double x) const;
 };
-/// A bar: axial (S = EA, mu = rhoA) or torsion (S = GJ, mu = rho Ip).
+/// A piece of a stepped bar from x_from (m) on.
+struct BarStep {
+  double x_from = 0, S = 0, mu = 0;
+};
+/// A bar: axial (S = EA, mu = rhoA) or torsion (S = GJ, mu = rho Ip); stepped as BeamBending.
 struct Bar {
   double S = 0, mu = 0, L = 0;
+  std::vector<BarStep> steps = {};
+  Bar at(double x) const;
 };
 
 /// A support or a mass between (or at) the ends of one line, at x (m): springs to ground
@@ -67,6 +81,8 @@ struct SupportReaction {
 struct BendingResponse {
   double w = 0;      ///< m
   double theta = 0;  ///< rad; = -phi for bending in x-z (theta_y), +phi in x-y (theta_z)
+  double M = 0;      ///< bending moment EI phi' (sagging positive: concave towards +w), N*m
+  double Q = 0;      ///< shear force dM/dx, N (just beyond the probe: x + 0; at L, L - 0)
 };
 /// Static deflection of a beam in one plane at the probes (point loads, and distributed loads: their
 /// ends and the probes then become nodes, and each segment's share is integrated by 4-point Gauss,
@@ -78,18 +94,23 @@ std::vector<BendingResponse> beam_static(const BeamBending& beam, EndSprings lef
                                          double moment_sign, long* unknowns = nullptr,
                                          const PointAttachments& points = {}, const DistributedLineLoads& dist = {},
                                          std::vector<SupportReaction>* reactions = nullptr);
-/// Static displacement of a bar at the probes under point loads (force = Fx or Mx).
+/// Static displacement of a bar at the probes under point loads (force = Fx or Mx); `forces`, if
+/// given, gets the bar's force S u' there (N tension positive, or the torque N*m; x + 0 as above).
 std::vector<double> bar_static(const Bar& bar, double k_left, double k_right, const std::vector<LineLoad>& loads,
                                const std::vector<double>& probes, long* unknowns = nullptr,
                                const PointAttachments& points = {}, const DistributedLineLoads& dist = {},
-                               std::vector<SupportReaction>* reactions = nullptr);
+                               std::vector<SupportReaction>* reactions = nullptr, std::vector<double>* forces = nullptr);
 /// Undamped receptance w(observe)/F(excite) of a beam in one plane at omega (exact).
 /// `unknowns`, if given, is raised to the size of the system solved (as for the statics).
 double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings right, double excite, double observe,
                        double omega, long* unknowns = nullptr, const PointAttachments& points = {});
 
-/// Bending properties of a scene's beam in x-z (about y) or x-y (about z), per its theory.
+/// Bending properties of a scene's beam in x-z (about y) or x-y (about z), per its theory (a
+/// stepped beam: piece by piece).
 BeamBending bending_xz(const Scene& s);
 BeamBending bending_xy(const Scene& s);
+/// A scene's beam as an axial bar (EA, rho A) and as a torsion bar (GJ, rho Ip), piece by piece.
+Bar axial_bar(const Scene& s);
+Bar torsion_bar(const Scene& s);
 
 }  // namespace modalbench::exact

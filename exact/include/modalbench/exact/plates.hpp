@@ -37,9 +37,13 @@ struct PressurePatch {
 /// Static deflection of a simply supported Kirchhoff plate at (x, y) under point forces {x, y, Fz}
 /// and pressure patches, with the slopes: returns {w, dw/dx, dw/dy}. A patch's load coefficient is
 /// (4 p / a b) (a / m pi) (cos(m pi x1/a) - cos(m pi x2/a)) (b / n pi) (cos(n pi y1/b) - cos(n pi y2/b)).
+/// `curvature`, if given, gets {w_xx, w_yy, w_xy} there and `curvature_tail` the largest of their
+/// |S(terms) - S(terms / 2)| (the moments' series converge slower than w's, and not at all under a
+/// point force at (x, y), where Kirchhoff's moments are infinite).
 std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
                                     double x, double y, int terms, double* tail = nullptr,
-                                    const std::vector<PressurePatch>& patches = {});
+                                    const std::vector<PressurePatch>& patches = {},
+                                    std::array<double, 3>* curvature = nullptr, double* curvature_tail = nullptr);
 
 /// Mindlin plate, all edges simply supported (hard), every branch.
 std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double E, double nu, double G,

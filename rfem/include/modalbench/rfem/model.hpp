@@ -90,6 +90,8 @@ struct PointSingularity {
   Kind kind = Kind::Kink;
   double coefficient = 0;
   Derivative derivative = Derivative::None;
+  /// For load points Q with x_from <= Q.x < x_to only (a stepped beam: one per piece).
+  double x_from = -kInf, x_to = kInf;
 };
 
 struct Model {
