@@ -86,8 +86,14 @@ PYBIND11_MODULE(_modalbench, m) {
       } catch (const std::invalid_argument& e) {
         throw mb::InputError("solve()", "backend", e.what());
       }
-      const mb::Discretization mesh = mesh_spec.empty() ? solver->default_mesh(scene) : mb::Discretization::parse(mesh_spec);
+      mb::Discretization mesh;
+      try {
+        mesh = mesh_spec.empty() ? solver->default_mesh(scene) : mb::Discretization::parse(mesh_spec);
+      } catch (const mb::InputError& e) {  // parse speaks of --mesh: here it is the argument `mesh`
+        throw mb::InputError("solve()", "mesh", e.reason());
+      }
       mb::Options opt;
+      opt.origin = "solve()";
       opt.mass = mb::parse_mass_model(mass, "solve()", "mass");
       opt.backend = options;
       opt.refine_to_tolerance = mesh_spec.empty();  // as the command line: a default mesh is refined to tolerance

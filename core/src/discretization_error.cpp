@@ -125,8 +125,43 @@ void judge_frequencies(const Result& fine, const detail::MeshSolve& coarse, cons
 
 /// The deflections' estimate (worst component of every probe, relative to the largest
 /// deflection) into `e`; what exceeds the tolerance into `problems`.
+/// The stress resultants at the probes where every mesh gives them: the largest estimate, each
+/// component relative to the size of its kind in the structure (moments, forces; a plate's
+/// moments per length): the largest at the probes or in the support reactions (a moment: also a
+/// reaction force times the length), so a resultant that is zero at its probe (a free end) is not
+/// judged by its rounding. 0 where there are none.
+double judge_forces(const Result& fine, const Result& coarse, const Result* coarser, double length, Gci& gci) {
+  auto all = [](const Result* r) {
+    return r && std::all_of(r->deflections.begin(), r->deflections.end(), [](const Deflection& d) { return d.has_forces; });
+  };
+  if (!all(&fine) || !all(&coarse) || (coarser && !all(coarser))) return 0.0;
+  using F = double InternalForces::*;
+  const std::vector<std::vector<F>> kinds = {{&InternalForces::My, &InternalForces::Mz, &InternalForces::T},
+                                             {&InternalForces::N, &InternalForces::Qy, &InternalForces::Qz},
+                                             {&InternalForces::mx, &InternalForces::my, &InternalForces::mxy}};
+  double force = 0, moment = 0;  // of the reactions
+  for (const Reaction& r : fine.reactions)
+    for (int k = 0; k < 3; ++k) {
+      force = std::max(force, std::abs(r.force[k]));
+      moment = std::max(moment, std::abs(r.moment[k]));
+    }
+  double worst = 0;
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    const auto& kind = kinds[k];
+    double scale = k == 0 ? std::max(moment, force * length) : k == 1 ? force : 0.0;
+    for (const auto& d : fine.deflections)
+      for (F c : kind) scale = std::max(scale, std::abs(d.forces.*c));
+    if (!(scale > 0)) continue;
+    for (std::size_t i = 0; i < fine.deflections.size(); ++i)
+      for (F c : kind)
+        worst = std::max(worst, gci(fine.deflections[i].forces.*c, coarse.deflections[i].forces.*c,
+                                    coarser ? coarser->deflections[i].forces.*c : kNotMeasured, scale));
+  }
+  return worst;
+}
+
 void judge_deflections(const Result& fine, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser,
-                       Gci& gci, ErrorEstimate& e, std::vector<std::string>& problems) {
+                       double length, Gci& gci, ErrorEstimate& e, std::vector<std::string>& problems) {
   const Result& cr = *coarse.result;
   if (fine.deflections.size() != cr.deflections.size() || fine.deflections.empty()) return;
   double scale = 0, worst = 0;
@@ -141,10 +176,11 @@ void judge_deflections(const Result& fine, const detail::MeshSolve& coarse, cons
     worst = std::max({worst, gci(x.u, y.u, z ? z->u : nan, scale), gci(x.v, y.v, z ? z->v : nan, scale),
                       gci(x.w, y.w, z ? z->w : nan, scale)});
   }
+  worst = std::max(worst, judge_forces(fine, cr, third_defl ? coarser->result : nullptr, length, gci));
   e.deflections = worst;
   if (!(worst <= e.tolerance))
     problems.push_back(fmt::format("deflections: estimated discretization error {:.2g} of the largest deflection "
-                                   "(mesh {} against {}{}) exceeds the tolerance {:.2g} ([request] tolerance): use a "
+                                   "(or stress resultant of its kind; mesh {} against {}{}) exceeds the tolerance {:.2g} ([request] tolerance): use a "
                                    "finer mesh",
                                    worst, fine.summary.mesh, coarse.spec,
                                    third_defl ? " and " + coarser->spec : std::string(), e.tolerance));
@@ -189,7 +225,7 @@ detail::Verdict detail::judge_discretization(const Scene& scene, double order, c
   std::vector<std::string> problems;
   if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty())
     judge_frequencies(fine, coarse, coarser, order, gci, e, problems);
-  if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, gci, e, problems);
+  if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, scene.geometry.length, gci, e, problems);
   e.note = estimate_note(e, fine, coarse, coarser, gci.third(), other_is_finer);
   return {e, problems};
 }

@@ -73,7 +73,9 @@ ResolvedOptions detail::resolve_options(const Solver& solver, const Scene& scene
   if (auto it = scene.backend_options.find(solver.name()); it != scene.backend_options.end())
     for (const auto& o : it->second)
       apply(o.key, o.text, scene.source.empty() ? "<scene>" : scene.source, "backend." + solver.name() + "." + o.key);
-  for (const auto& [key, text] : options.backend) apply(key, text, "command line", "--option " + key);
+  // Named as the caller wrote them: `--option KEY` on the command line, `options.KEY` elsewhere.
+  for (const auto& [key, text] : options.backend)
+    apply(key, text, options.origin, options.origin == "command line" ? "--option " + key : "options." + key);
   return out;
 }
 

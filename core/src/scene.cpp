@@ -132,6 +132,7 @@ std::vector<PointLoad> Scene::all_point_loads() const {
     for (const PointMass& m : masses) {
       PointLoad p;
       p.x = m.x;
+      p.y = m.y;
       p.Fx = m.mass * (*gravity)[0];
       p.Fy = m.mass * (*gravity)[1];
       p.Fz = m.mass * (*gravity)[2];

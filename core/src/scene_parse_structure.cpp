@@ -111,45 +111,69 @@ void read_pressures(const Reader& r, const toml::array& arr, Scene& s) {
 
 }  // namespace
 
-/// [[supports.points]]: beam supports between the ends, each at x with a name (kind) or springs.
+namespace {
+
+/// A plate point's y, strictly inside the plate's width (`where`.y).
+double interior_y(const Reader& r, const toml::table& t, const std::string& where, const Scene& s) {
+  const double y = r.number(t, where, "y");
+  if (!(y > 0.0 && y < s.geometry.width))
+    r.fail(where + ".y", fmt::format("must lie strictly inside the plate, in (0, {}) m (got {}); the edges' supports "
+                                     "are supports.y0 and supports.yB",
+                                     s.geometry.width, y));
+  return y;
+}
+
+}  // namespace
+
+/// [[supports.points]]: supports between a beam's ends (at x; sorted by x) or inside a plate (at
+/// x, y; as written), each a name (kind) or springs.
 void scene_detail::read_point_supports(const Reader& r, const toml::table& sup, Scene& s) {
   const toml::array* arr = table_array(r, sup, "points", "supports.points");
   if (!arr) return;
-  if (s.is_plate()) r.fail("supports.points", "point supports on plates are not modelled yet (beams only)");
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const std::string where = fmt::format("supports.points[{}]", i);
     const toml::table& t = *arr->get(i)->as_table();
     PointSupport ps;
     ps.x = interior_x(r, t, where, s);
+    if (s.is_plate()) ps.y = interior_y(r, t, where, s);
     if (const toml::node* kind = t.get("kind")) {
-      r.only_keys(t, where, {"x", "kind"});
+      r.only_keys(t, where, s.is_plate() ? std::set<std::string>{"x", "y", "kind"} : std::set<std::string>{"x", "kind"});
       if (!kind->is_string()) r.fail(where + ".kind", "must be a support name (free, pinned, clamped, guided)");
       ps.support = read_support_node(r, kind, where + ".kind", s);
     } else {
       toml::table springs = t;
       springs.erase("x");
+      springs.erase("y");
       ps.support = read_support_node(r, &springs, where, s);
     }
     for (const PointSupport& other : s.point_supports)
-      if (other.x == ps.x) r.fail(where + ".x", fmt::format("a second support at x = {} m (one per point)", ps.x));
+      if (other.x == ps.x && other.y == ps.y)
+        r.fail(where + ".x", s.is_plate() ? fmt::format("a second support at ({}, {}) m (one per point)", ps.x, ps.y)
+                                          : fmt::format("a second support at x = {} m (one per point)", ps.x));
     s.point_supports.push_back(ps);
   }
-  std::sort(s.point_supports.begin(), s.point_supports.end(),
-            [](const PointSupport& a, const PointSupport& b) { return a.x < b.x; });
+  if (s.is_beam())
+    std::sort(s.point_supports.begin(), s.point_supports.end(),
+              [](const PointSupport& a, const PointSupport& b) { return a.x < b.x; });
 }
 
-/// [[masses]]: point masses on a beam's axis, at x in [0, L], with optional rotary inertias.
+/// [[masses]]: point masses on a beam's axis, at x in [0, L] (sorted by x), or on a plate at x, y
+/// (as written), with optional rotary inertias.
 void scene_detail::read_masses(const Reader& r, const toml::table& root, Scene& s) {
   const toml::array* arr = table_array(r, root, "masses", "masses");
   if (!arr) return;
-  if (s.is_plate()) r.fail("masses", "point masses on plates are not modelled yet (beams only)");
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const std::string where = fmt::format("masses[{}]", i);
     const toml::table& t = *arr->get(i)->as_table();
-    r.only_keys(t, where, {"x", "mass", "Jx", "Jy", "Jz"});
+    r.only_keys(t, where, s.is_plate() ? std::set<std::string>{"x", "y", "mass", "Jx", "Jy", "Jz"}
+                                       : std::set<std::string>{"x", "mass", "Jx", "Jy", "Jz"});
     PointMass pm;
     pm.x = r.number(t, where, "x");
     check_range(r, where + ".x", pm.x, 0.0, s.geometry.length);
+    if (s.is_plate()) {
+      pm.y = r.number(t, where, "y");
+      check_range(r, where + ".y", pm.y, 0.0, s.geometry.width);
+    }
     auto non_negative = [&](const std::string& key, bool required) {
       const std::optional<double> v = required ? std::optional<double>(r.number(t, where, key)) : r.opt_number(t, where, key);
       if (v && !(*v >= 0)) r.fail(where + "." + key, fmt::format("must be >= 0 (got {})", *v));
@@ -163,7 +187,8 @@ void scene_detail::read_masses(const Reader& r, const toml::table& root, Scene& 
       r.fail(where, "a point mass with no mass and no rotary inertia (remove it, or give mass > 0)");
     s.masses.push_back(pm);
   }
-  std::sort(s.masses.begin(), s.masses.end(), [](const PointMass& a, const PointMass& b) { return a.x < b.x; });
+  if (s.is_beam())
+    std::sort(s.masses.begin(), s.masses.end(), [](const PointMass& a, const PointMass& b) { return a.x < b.x; });
 }
 
 void scene_detail::read_distributed_loads(const Reader& r, const toml::table& root, Scene& s) {

@@ -80,14 +80,14 @@ void validate(const Scene& s) {
     r.fail("scene.theory", "a beam's theory is euler-bernoulli or timoshenko");
   }
   validate_segments(r, s);
-  if (s.is_plate() && !s.point_supports.empty())
-    r.fail("supports.points", "point supports on plates are not modelled yet (beams only)");
-  if (s.is_plate() && !s.masses.empty()) r.fail("masses", "point masses on plates are not modelled yet (beams only)");
   for (std::size_t i = 0; i < s.point_supports.size(); ++i) {
     const std::string key = fmt::format("supports.points[{}]", i);
-    const double x = s.point_supports[i].x;
+    const double x = s.point_supports[i].x, y = s.point_supports[i].y;
     if (!(x > 0 && x < s.geometry.length)) r.fail(key + ".x", fmt::format("must lie in (0, {}) m", s.geometry.length));
-    if (i > 0 && !(x > s.point_supports[i - 1].x))
+    if (s.is_plate() && !(y > 0 && y < s.geometry.width))
+      r.fail(key + ".y", fmt::format("must lie in (0, {}) m", s.geometry.width));
+    if (s.is_beam() && y != 0) r.fail(key + ".y", "a beam's supports lie on its axis (y = 0)");
+    if (s.is_beam() && i > 0 && !(x > s.point_supports[i - 1].x))
       r.fail(key + ".x", "point supports must be distinct and in ascending x");
     check_support(fmt::format("points[{}]", i), s.point_supports[i].support);
   }
@@ -95,9 +95,11 @@ void validate(const Scene& s) {
     const std::string key = fmt::format("masses[{}]", i);
     const PointMass& pm = s.masses[i];
     check_range(r, key + ".x", pm.x, 0.0, s.geometry.length);
+    if (s.is_plate()) check_range(r, key + ".y", pm.y, 0.0, s.geometry.width);
+    if (s.is_beam() && pm.y != 0) r.fail(key + ".y", "a beam's masses lie on its axis (y = 0)");
     for (double v : {pm.mass, pm.Jx, pm.Jy, pm.Jz})
       if (!(std::isfinite(v) && v >= 0)) r.fail(key, "mass and rotary inertias must be finite and >= 0");
-    if (i > 0 && pm.x < s.masses[i - 1].x) r.fail(key + ".x", "masses must be in ascending x");
+    if (s.is_beam() && i > 0 && pm.x < s.masses[i - 1].x) r.fail(key + ".x", "masses must be in ascending x");
   }
   const std::vector<DistributedLoad>& dist = s.is_beam() ? s.line_loads : s.pressures;
   const std::string dist_key = s.is_beam() ? "line_loads" : "pressures";

@@ -20,7 +20,8 @@ Capability DtfmSolver::supports(const Scene& s) const {
     return c;
   }
   if (!s.point_supports.empty() || !s.masses.empty()) {
-    c.reason = "dtfm does not yet model supports between the ends or point masses (its prisms run end to end)";
+    c.reason = "dtfm does not yet model supports at points or point masses (its prisms run from end to end, or edge to "
+               "edge)";
     return c;
   }
   c.modes = c.statics = c.frf = true;

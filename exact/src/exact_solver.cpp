@@ -424,6 +424,11 @@ Capability ExactSolver::supports(const Scene& s) const {
     c.modes = c.statics = c.frf = true;
     return c;
   }
+  if (!s.point_supports.empty() || !s.masses.empty()) {
+    c.reason = "exact has no closed form for a plate with supports or masses at points (its plates are Navier and "
+               "Levy series); rfem models them";
+    return c;
+  }
   std::string why;
   const PlateMethod pm = plate_method(s, why);
   c.modes = pm != PlateMethod::None;

@@ -267,6 +267,8 @@ std::string calculix_unsupported_reason(const Scene& s) {
         return "the 3D reference models beam ends clamped or free only (got '" + e->kind + "')";
     return "";
   }
+  if (!s.point_supports.empty() || !s.masses.empty())
+    return "the 3D reference has no supports or masses at points of a plate";
   for (const Support* e : {&s.x0, &s.xL, &s.y0, &s.yB})
     if (!(is_clamped(*e) || is_simply_supported(*e) || e->is_free()))
       return "the 3D reference models plate edges simply supported, clamped or free only";

@@ -154,6 +154,8 @@ std::string calculix_peer_unsupported_reason(const Scene& s) {
         if (k != 0.0 && !std::isinf(k)) return "the B32R beam reference holds or frees each end DOF: no springs";
     return "";
   }
+  if (!s.point_supports.empty() || !s.masses.empty())
+    return "the S8R shell reference is written without supports or masses at points of a plate";
   for (const Support* e : {&s.x0, &s.xL, &s.y0, &s.yB})
     if (!(is_clamped(*e) || is_simply_supported(*e) || e->is_free()))
       return "the S8R shell reference models plate edges simply supported, clamped or free only";

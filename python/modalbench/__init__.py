@@ -139,8 +139,19 @@ def solve(scene, backend, mesh=None, mass="consistent", options=None):
     text = _modalbench._solve(scene._native, str(backend), "" if mesh is None else str(mesh), str(mass), opts)
     doc = json.loads(text)
     if doc["status"] == "invalid-input":
-        raise InputError(doc["message"], scene.source, "", doc["message"])
+        raise _input_error(doc["message"], scene.source)
     return Result(doc)
+
+
+def _input_error(message, source):
+    """The InputError of a solve's invalid-input message "SOURCE: KEY: reason", SOURCE being this
+    call ("solve()": its arguments) or the scene's file (its [backend.NAME] table)."""
+    for origin in ("solve()", source):
+        prefix = f"{origin}: "
+        if origin and message.startswith(prefix):
+            key, _, reason = message[len(prefix):].partition(": ")
+            return InputError(message, origin, key, reason)
+    return InputError(message, source, "", message)
 
 
 def _option_text(v):

@@ -1,6 +1,7 @@
 #include "modalbench/rfem/builders.hpp"
 
 #include "beam_cells.hpp"
+#include "modalbench/rfem/system.hpp"
 
 #include <fmt/format.h>
 
@@ -118,7 +119,7 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     m.sdes.push_back(sd);
   }
   // End supports: SDEs to ground at the end points (the end RFEs' centres).
-  auto support = [&](const Support& sp, int body, double x) {
+  auto support = [&](const Support& sp, int body, double x, const std::string& name) {
     Sde sd;
     sd.a = body;
     sd.b = kGround;
@@ -126,14 +127,18 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     sd.stiffness << sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational, sp.rotational;
     bool any = false;
     for (int c = 0; c < 6; ++c) any = any || sd.stiffness[c] != 0;
-    if (any) m.sdes.push_back(sd);
+    if (!any) return;
+    m.supports.emplace_back(static_cast<int>(m.sdes.size()), name);
+    m.sdes.push_back(sd);
   };
-  support(s.x0, 0, 0.0);
-  support(s.xL, n, L);
+  support(s.x0, 0, 0.0, "x0");
+  support(s.xL, n, L, "xL");
   // Supports between the ends: SDEs to ground at the point, attached to the RFE whose cell holds
   // it (off its centre the attachment kinematics carry it: w(P) = w_j + w' (x - x_j), second order).
-  for (const PointSupport& p : s.point_supports)
-    support(p.support, std::clamp(static_cast<int>(std::lround(p.x / d)), 0, n), p.x);
+  for (std::size_t i = 0; i < s.point_supports.size(); ++i) {
+    const PointSupport& p = s.point_supports[i];
+    support(p.support, std::clamp(static_cast<int>(std::lround(p.x / d)), 0, n), p.x, fmt::format("points[{}]", i));
+  }
   // Point masses: at an RFE centre its own; between two, shared as linear interpolation weights
   // (t and 1 - t: the kinetic energy's error is of order m h^2 w'^2, the model's own order).
   for (const PointMass& pm : s.masses) {
@@ -369,6 +374,26 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   edge(s.yB, true, ny);
   edge(s.x0, false, 0);
   edge(s.xL, false, nx);
+  // Supports at points: an SDE to ground at P on the RFE whose cell holds it (off its centre the
+  // attachment kinematics carry it), k_t on w and k_r on both rotations. Point masses: shared
+  // between the (up to) four centres around them by the bilinear weights of point loads.
+  for (std::size_t k = 0; k < s.point_supports.size(); ++k) {
+    const PointSupport& p = s.point_supports[k];
+    Sde sd;
+    sd.a = id(std::clamp(static_cast<int>(std::lround(p.x / dl)), 0, nx), std::clamp(static_cast<int>(std::lround(p.y / db)), 0, ny));
+    sd.b = kGround;
+    sd.point = Vector3d(p.x, p.y, 0);
+    sd.stiffness << 0, 0, p.support.translational, p.support.rotational, p.support.rotational, 0;
+    if (!sd.stiffness.any()) continue;
+    m.supports.emplace_back(static_cast<int>(m.sdes.size()), fmt::format("points[{}]", k));
+    m.sdes.push_back(sd);
+  }
+  for (const PointMass& pm : s.masses)
+    for (auto [e, w] : point_weights(m, Vector3d(pm.x, pm.y, 0))) {
+      RigidElement& r = m.elements[static_cast<std::size_t>(e)];
+      r.mass += w * pm.mass;
+      r.inertia += w * Vector3d(pm.Jx, pm.Jy, pm.Jz);
+    }
 
   if (corners) {
     // Coordinates c_pq, p = -1..nx, q = -1..ny: values at x_p = 0, (p + 1/2) dl, a (the ends and

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "modalbench/rfem/system.hpp"
+#include "system_detail.hpp"
 
 namespace modalbench::rfem {
 
@@ -80,6 +81,10 @@ Eigen::VectorXd point_load(const Model& m, const System& sys, const Eigen::Vecto
 }
 
 Eigen::VectorXd point_loads(const Model& m, const System& sys, const std::vector<PointAction>& actions) {
+  return sys.T.transpose() * detail::point_loads_q(m, actions);
+}
+
+Eigen::VectorXd detail::point_loads_q(const Model& m, const std::vector<PointAction>& actions) {
   const int na = m.dofs_per_element();
   Eigen::VectorXd fq = Eigen::VectorXd::Zero(m.body_dofs());
   for (const auto& [P, action] : actions)
@@ -91,7 +96,7 @@ Eigen::VectorXd point_loads(const Model& m, const System& sys, const std::vector
                              : Vector6d(action * w);
       for (int k = 0; k < na; ++k) fq[static_cast<long>(e) * na + k] += f[m.active[static_cast<std::size_t>(k)]];
     }
-  return sys.T.transpose() * fq;
+  return fq;
 }
 
 Eigen::VectorXd point_observer(const Model& m, const System& sys, const Eigen::Vector3d& P, int comp) {

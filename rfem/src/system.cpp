@@ -1,6 +1,7 @@
 #include "modalbench/rfem/system.hpp"
 
 #include "modalbench/rfem/factor.hpp"
+#include "system_detail.hpp"
 
 #include <fmt/format.h>
 
@@ -15,8 +16,10 @@ namespace modalbench::rfem {
 
 namespace {
 
-using Triplet = Eigen::Triplet<double>;
-using SparseRow = std::vector<std::pair<long, double>>;  // (index, coefficient)
+using detail::body_vector;
+using detail::deformation;
+using detail::SparseRow;
+using detail::Triplet;
 
 Matrix6d block_rotation(const Eigen::Matrix3d& R) {
   Matrix6d Rb = Matrix6d::Zero();
@@ -90,6 +93,10 @@ class Eliminator {
   std::vector<char> slave_;
 };
 
+}  // namespace
+
+namespace detail {
+
 /// 6-vector of body e from the active vector q (inactive components zero).
 Vector6d body_vector(const Model& m, const Eigen::VectorXd& q, int e) {
   Vector6d v = Vector6d::Zero();
@@ -106,30 +113,18 @@ Vector6d deformation(const Model& m, const Sde& sd, const Eigen::VectorXd& q) {
                          body_vector(m, q, sd.b), sd.axes);
 }
 
-}  // namespace
-
-System assemble(const Model& m) {
-  m.check();
+RigidRows rigid_rows(const Model& m) {
   const int na = m.dofs_per_element();
-  const long nq = m.body_dofs();
-  std::vector<SparseRow> holds, links;
-
+  RigidRows out;
   // Active entries of a row over one body's 6-vector, as a sparse row over q.
-  auto rows_of = [&](const Eigen::Matrix<double, 1, 6>& r, int body, SparseRow& out) {
+  auto rows_of = [&](const Eigen::Matrix<double, 1, 6>& r, int body, SparseRow& row) {
     for (int k = 0; k < na; ++k) {
       const double v = r[m.active[static_cast<std::size_t>(k)]];
-      if (v != 0.0) out.emplace_back(static_cast<long>(body) * na + k, v);
+      if (v != 0.0) row.emplace_back(static_cast<long>(body) * na + k, v);
     }
   };
-  auto finite_part = [](const Vector6d& k) {
-    Vector6d f = k;
-    for (int c = 0; c < 6; ++c)
-      if (std::isinf(f[c])) f[c] = 0;
-    return f;
-  };
-
-  // Pass 1: rigid components -> held rows (to ground) and constraint rows (between RFEs).
-  for (const Sde& sd : m.sdes) {
+  for (std::size_t i = 0; i < m.sdes.size(); ++i) {
+    const Sde& sd = m.sdes[i];
     std::vector<int> rigid;
     for (int c = 0; c < 6; ++c)
       if (std::isinf(sd.stiffness[c])) rigid.push_back(c);
@@ -140,7 +135,9 @@ System assemble(const Model& m) {
       for (int c : rigid) {
         SparseRow row;
         rows_of(Wa.row(c), sd.a, row);
-        if (!row.empty()) holds.push_back(std::move(row));
+        if (row.empty()) continue;
+        out.holds.push_back(std::move(row));
+        out.hold_origin.emplace_back(static_cast<int>(i), c);
       }
     } else {
       const Matrix6d Wb = Rt * attachment(sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre);
@@ -148,10 +145,68 @@ System assemble(const Model& m) {
         SparseRow row;
         rows_of(-Wa.row(c), sd.a, row);
         rows_of(Wb.row(c), sd.b, row);
-        if (!row.empty()) links.push_back(std::move(row));
+        if (!row.empty()) out.links.push_back(std::move(row));
       }
     }
   }
+  return out;
+}
+
+std::vector<Triplet> element_triplets(const Model& m, bool damping) {
+  const int na = m.dofs_per_element();
+  std::vector<Triplet> t;
+  if (!damping) t.reserve(static_cast<std::size_t>(m.sdes.size()) * 4 * na * na + m.couplings.size() * 16 * na * na);
+  auto scatter_q = [&](const Eigen::MatrixXd& Ke, const std::vector<int>& bodies) {
+    const int nb = static_cast<int>(bodies.size());
+    for (int bi = 0; bi < nb; ++bi)
+      for (int i = 0; i < na; ++i) {
+        const long qi = static_cast<long>(bodies[static_cast<std::size_t>(bi)]) * na + i;
+        for (int bj = 0; bj < nb; ++bj)
+          for (int j = 0; j < na; ++j) {
+            const double v = Ke(bi * na + i, bj * na + j);
+            if (v != 0.0) t.emplace_back(qi, static_cast<long>(bodies[static_cast<std::size_t>(bj)]) * na + j, v);
+          }
+      }
+  };
+  for (const Sde& sd : m.sdes) {
+    Vector6d k = damping ? sd.damping : sd.stiffness;
+    for (int c = 0; c < 6; ++c)
+      if (std::isinf(k[c])) k[c] = 0;  // rigid components are constraints, not stiffness
+    if (!k.any()) continue;
+    const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
+    if (sd.b == kGround) {
+      scatter_q(restrict_dofs(sde_to_ground(ra, sd.axes, k), m.active), {sd.a});
+    } else {
+      const Eigen::Vector3d rb = sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre;
+      scatter_q(restrict_dofs(sde_stiffness(ra, rb, sd.axes, k), m.active), {sd.a, sd.b});
+    }
+  }
+  if (damping) return t;
+  std::map<const Eigen::MatrixXd*, Eigen::MatrixXd> restricted;  // shared blocks restricted once
+  for (const Coupling& cp : m.couplings) {
+    auto it = restricted.find(cp.stiffness.get());
+    if (it == restricted.end()) it = restricted.emplace(cp.stiffness.get(), restrict_dofs(*cp.stiffness, m.active)).first;
+    scatter_q(it->second, cp.elements);
+  }
+  return t;
+}
+
+SpMat over_q(const Model& m, const std::vector<Triplet>& t) {
+  SpMat A(m.body_dofs(), m.body_dofs());
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+}  // namespace detail
+
+System assemble(const Model& m) {
+  m.check();
+  const int na = m.dofs_per_element();
+  const long nq = m.body_dofs();
+  // Rigid components -> held rows (to ground) and constraint rows (between RFEs).
+  const detail::RigidRows rigid = detail::rigid_rows(m);
+  const std::vector<SparseRow>& holds = rigid.holds;
+  const std::vector<SparseRow>& links = rigid.links;
 
   // Generalized coordinates of the builder (or q itself), then the held ones eliminated: q = T z.
   SpMat B;
@@ -196,45 +251,10 @@ System assemble(const Model& m) {
   const int* ti = Tr.innerIndexPtr();
   const double* tv = Tr.valuePtr();
 
-  // Pass 2: element matrices over q, then K_z = T' K T (T has few entries per row: the product
-  // costs about nnz(K); scattering each element entry through T would cost that times the
-  // square of T's row lengths).
-  std::vector<Triplet> tk, tc;
-  tk.reserve(static_cast<std::size_t>(m.sdes.size()) * 4 * na * na + m.couplings.size() * 16 * na * na);
-  auto scatter_q = [&](std::vector<Triplet>& t, const Eigen::MatrixXd& Ke, const std::vector<int>& bodies) {
-    const int nb = static_cast<int>(bodies.size());
-    for (int bi = 0; bi < nb; ++bi)
-      for (int i = 0; i < na; ++i) {
-        const long qi = static_cast<long>(bodies[static_cast<std::size_t>(bi)]) * na + i;
-        for (int bj = 0; bj < nb; ++bj)
-          for (int j = 0; j < na; ++j) {
-            const double v = Ke(bi * na + i, bj * na + j);
-            if (v != 0.0) t.emplace_back(qi, static_cast<long>(bodies[static_cast<std::size_t>(bj)]) * na + j, v);
-          }
-      }
-  };
-  for (const Sde& sd : m.sdes) {
-    const Vector6d kf = finite_part(sd.stiffness);
-    const bool stiff = kf.any(), damped = sd.damping.any();
-    if (!stiff && !damped) continue;
-    const Eigen::Vector3d ra = sd.point - m.elements[static_cast<std::size_t>(sd.a)].centre;
-    if (sd.b == kGround) {
-      const std::vector<int> bodies = {sd.a};
-      if (stiff) scatter_q(tk, restrict_dofs(sde_to_ground(ra, sd.axes, kf), m.active), bodies);
-      if (damped) scatter_q(tc, restrict_dofs(sde_to_ground(ra, sd.axes, sd.damping), m.active), bodies);
-    } else {
-      const Eigen::Vector3d rb = sd.point - m.elements[static_cast<std::size_t>(sd.b)].centre;
-      const std::vector<int> bodies = {sd.a, sd.b};
-      if (stiff) scatter_q(tk, restrict_dofs(sde_stiffness(ra, rb, sd.axes, kf), m.active), bodies);
-      if (damped) scatter_q(tc, restrict_dofs(sde_stiffness(ra, rb, sd.axes, sd.damping), m.active), bodies);
-    }
-  }
-  std::map<const Eigen::MatrixXd*, Eigen::MatrixXd> restricted;  // shared blocks restricted once
-  for (const Coupling& cp : m.couplings) {
-    auto it = restricted.find(cp.stiffness.get());
-    if (it == restricted.end()) it = restricted.emplace(cp.stiffness.get(), restrict_dofs(*cp.stiffness, m.active)).first;
-    scatter_q(tk, it->second, cp.elements);
-  }
+  // Element matrices over q, then K_z = T' K T (T has few entries per row: the product costs
+  // about nnz(K); scattering each element entry through T would cost that times the square of T's
+  // row lengths).
+  const std::vector<Triplet> tk = detail::element_triplets(m, false), tc = detail::element_triplets(m, true);
   Eigen::VectorXd mass(nq);
   for (std::size_t e = 0; e < m.elements.size(); ++e)
     for (int k = 0; k < na; ++k) {
@@ -244,9 +264,7 @@ System assemble(const Model& m) {
     }
   const SpMat Tt = sys.T.transpose();
   auto reduce = [&](const std::vector<Triplet>& t) {
-    SpMat A(nq, nq);
-    A.setFromTriplets(t.begin(), t.end());
-    SpMat Az = Tt * A * sys.T;
+    SpMat Az = Tt * detail::over_q(m, t) * sys.T;
     Az.makeCompressed();
     return Az;
   };

@@ -657,19 +657,38 @@ def m_tolerance(s, rng):
 
 def m_structure(s, rng):
     """The structure's own keys: a support between the ends, a point mass, a distributed load,
-    gravity, or a round section (beams); a pressure patch or gravity (plates)."""
+    gravity, a round section or stepped pieces (beams); a pressure patch, gravity, a support or a
+    mass at a point (plates)."""
     L, B, _ = geo(s)
     if sc_kind(s) != "beam":
-        what = rng.choice(["pressure", "gravity"])
-        if what == "pressure":
+        what = rng.choice(["pressure", "gravity", "point-support", "mass"])
+        if what == "point-support":
+            entry = {"x": rng.choice([0.5, 1e-9, 0.999]) * L, "y": rng.choice([0.5, 0.3, 1e-9]) * B,
+                     "kind": rng.choice(["pinned", "clamped"])}
+            table(s, "supports").setdefault("points", []).append(entry)
+        elif what == "mass":
+            s.setdefault("masses", []).append({"x": rng.choice([0.5, 0.0, 0.37]) * L, "y": rng.choice([0.5, 1.0]) * B,
+                                               "mass": rng.choice([1e-9, 2.0, 1e6])})
+        elif what == "pressure":
             x0 = rng.uniform(0.0, 0.8)
             s.setdefault("pressures", []).append({"p": rng.choice([-1000.0, 1e-12, 1e9]),
                                                   "x": [x0 * L, (x0 + rng.uniform(0.05, 0.2)) * L]})
         else:
             s["gravity"] = {"g": [0.0, 0.0, rng.choice([-9.81, 1e3, -1e-9])]}
         return f"plate {what}"
-    what = rng.choice(["point-support", "mass", "line-load", "gravity", "circle", "tube"])
-    if what == "point-support":
+    what = rng.choice(["point-support", "mass", "line-load", "gravity", "circle", "tube", "segments"])
+    if what == "segments":
+        # Two or three pieces whose diameters span up to 1e3; geometry then gives only the length.
+        g = table(s, "geometry")
+        d = min(num(g.pop("width", None), 0.05), num(g.pop("height", None), 0.05))
+        g.pop("section", None)
+        cuts = sorted(rng.sample([0.1, 0.3, 0.5, 0.7, 1e-6], rng.choice([1, 2])))
+        ends = [0.0] + cuts + [1.0]
+        s["segments"] = [{"length": (ends[i + 1] - ends[i]) * L,
+                          "section": {"shape": "circle", "diameter": d * rng.choice([1.0, 0.5, 2.0, 1e-3])}}
+                         for i in range(len(ends) - 1)]
+        s["segments"][-1]["length"] = L - sum(p["length"] for p in s["segments"][:-1])
+    elif what == "point-support":
         sup = table(s, "supports")
         kind = rng.choice(["pinned", "clamped", "springs"])
         entry = {"x": rng.choice([0.5, 0.3, 1e-9, 1 - 1e-9, 0.999]) * L}

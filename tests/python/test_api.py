@@ -101,8 +101,14 @@ def test_a_bad_dict_gets_the_message_of_the_same_bad_toml(tmp_path, mutate, key)
 
 def test_invalid_mesh_and_backend_raise_input_error():
     s = mb.load_scene(SCENES / "paper_fixed_beam.toml")
-    with pytest.raises(mb.InputError, match="--mesh"):
+    with pytest.raises(mb.InputError) as e:
         mb.solve(s, "rfem", mesh="ten")
+    assert (e.value.source, e.value.key) == ("solve()", "mesh")
+    assert "command line" not in str(e.value) and "--mesh" not in str(e.value)
+    with pytest.raises(mb.InputError) as e:
+        mb.solve(s, "rfem", options={"no_such_option": 1})
+    assert (e.value.source, e.value.key) == ("solve()", "options.no_such_option")
+    assert "unknown option" in e.value.reason and "command line" not in str(e.value)
     with pytest.raises(mb.InputError, match="backend"):
         mb.solve(s, "no-such-backend")
     with pytest.raises(mb.InputError, match="mass"):

@@ -6,6 +6,8 @@
 //   - a clamped-free bar and shaft: N = Fx and T = Mx up to the load, 0 beyond;
 //   - the free body left of each probe of a stepped shaft under gravity, from the reactions and the
 //     loads (equilibrium, computed here): N, Qy, Qz, My, Mz agree to rounding;
+//   - rfem's reactions balance the loads to rounding, and its resultants (from them, by the free
+//     body) agree with exact within rfem's own estimate;
 //   - a simply supported square Kirchhoff plate under uniform pressure: mx = my = 0.0479 q a^2 at
 //     the centre, |mxy| = 0.0325 q a^2 at a corner (Timoshenko & Woinowsky-Krieger, table 8, nu =
 //     0.3; three digits).
@@ -16,6 +18,7 @@
 #include <cmath>
 #include <string>
 
+#include "modalbench/equilibrium.hpp"
 #include "solver_tests.hpp"
 
 using namespace modalbench;
@@ -150,4 +153,52 @@ probes = [[0.5, 0.5], [0.0, 0.0]]
   BOOST_TEST(std::abs(c.my / qa2 - 0.0479) <= 0.5e-4);
   BOOST_TEST(std::abs(c.mxy) <= 1e-9 * qa2);
   BOOST_TEST(std::abs(std::abs(r.deflections[1].forces.mxy) / qa2 - 0.0325) <= 0.5e-4);
+}
+
+// rfem: its reactions (multipliers of the held components) and, from them, the resultants by the
+// free body. Reactions balance the applied loads to rounding (equilibrium of the discrete model);
+// the resultants at the probes agree with exact within rfem's own estimate, which covers them.
+BOOST_AUTO_TEST_CASE(rfem_reactions_balance_and_resultants_within_the_estimate) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"x0 = \"pinned\"\nxL = \"pinned\"\n[[supports.points]]\nx = 1.0\nkind = \"pinned\"", "[[line_loads]]\nqz = -2000.0"},
+      {"x0 = \"clamped\"\nxL = \"clamped\"", "[[line_loads]]\nqz = [-500.0, -1500.0]\nx_from = 0.4\n[[loads]]\nx = 1.3\nFz = 700.0\nMy = 90.0"},
+      {"x0 = \"clamped\"\nxL = { translational = 1e6, rotational = 0.0 }", "[gravity]\ng = [0.0, 0.0, -9.81]"}};
+  for (const std::string theory : {"euler-bernoulli", "timoshenko"})
+    for (const auto& [sup, load] : cases) {
+      std::string text = beam("bending", sup, load, "[0.0, 0.37, 1.0, 1.3, 1.71]");
+      text.replace(text.find("euler-bernoulli"), 15, theory);
+      const Scene s = parse_scene(text, "rfem_forces.toml");
+      const Result ex = exact(text);
+      const Solver& rfem = registry().get("rfem");
+      Options o;
+      o.refine_to_tolerance = true;  // as the command line does with its default mesh
+      const Result rf = rfem.solve(s, rfem.default_mesh(s), o);
+      BOOST_TEST_CONTEXT(theory << ", " << sup << ": " << rf.summary.message) {
+        BOOST_REQUIRE(rf.summary.status == Status::Success);
+        BOOST_REQUIRE_EQUAL(rf.reactions.size(), ex.reactions.size());
+        // Equilibrium: the free body of the whole beam (just past its right end) carries nothing.
+        double scale_f = 0;
+        for (const Reaction& r : rf.reactions) scale_f = std::max(scale_f, std::abs(r.force[2]));
+        const InternalForces whole = free_body_forces(s, rf.reactions, 2.0);  // L - 0: the right end's support left out
+        double right_f = 0, right_m = 0;
+        for (const Reaction& r : rf.reactions)
+          if (r.position[0] == 2.0) right_f = r.force[2], right_m = r.moment[1];
+        BOOST_TEST(std::abs(whole.Qz + right_f) <= 1e-9 * scale_f);  // the right support balances what is left of it
+        BOOST_TEST(std::abs(whole.My + right_m) <= 1e-9 * scale_f * 2.0);
+        const double est = rf.summary.error_estimate.deflections;
+        double m_scale = 0, q_scale = 0;
+        for (const Deflection& d : ex.deflections) {
+          m_scale = std::max(m_scale, std::abs(d.forces.My));
+          q_scale = std::max(q_scale, std::abs(d.forces.Qz));
+        }
+        for (std::size_t i = 0; i < ex.deflections.size(); ++i) {
+          BOOST_REQUIRE(rf.deflections[i].has_forces);
+          BOOST_TEST_INFO("probe " << ex.deflections[i].position[0] << ": My " << rf.deflections[i].forces.My << " vs "
+                                   << ex.deflections[i].forces.My << ", Qz " << rf.deflections[i].forces.Qz << " vs "
+                                   << ex.deflections[i].forces.Qz << ", estimate " << est);
+          BOOST_TEST(std::abs(rf.deflections[i].forces.My - ex.deflections[i].forces.My) <= est * m_scale);
+          BOOST_TEST(std::abs(rf.deflections[i].forces.Qz - ex.deflections[i].forces.Qz) <= est * q_scale);
+        }
+      }
+    }
 }

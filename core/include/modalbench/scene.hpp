@@ -145,18 +145,19 @@ struct PointLoad {
   double Mx = 0, My = 0, Mz = 0;  ///< N*m, right-handed about the axes
 };
 
-/// A support between a beam's ends (`[[supports.points]]`): the springs of `support` (a name or
-/// springs, as at the ends) acting at x on the axis.
+/// A support between a beam's ends, or inside a plate (`[[supports.points]]`): the springs of
+/// `support` (a name or springs, as at the ends) acting at x on a beam's axis, at (x, y) on a plate
+/// (translational on w, rotational on both rotations).
 struct PointSupport {
-  double x = 0;
+  double x = 0, y = 0;
   Support support;
 };
 
-/// A point mass on a beam's axis at x (`[[masses]]`), rigidly attached: mass, kg, and rotary
-/// inertias about axes through the point parallel to x, y, z, kg m^2 (Jx polar; Jy turns with the
-/// x-z bending rotation theta_y, Jz with theta_z).
+/// A point mass on a beam's axis at x, or on a plate at (x, y) (`[[masses]]`), rigidly attached:
+/// mass, kg, and rotary inertias about axes through the point parallel to x, y, z, kg m^2 (Jx polar;
+/// Jy turns with the x-z bending rotation theta_y, Jz with theta_z).
 struct PointMass {
-  double x = 0;
+  double x = 0, y = 0;
   double mass = 0;
   double Jx = 0, Jy = 0, Jz = 0;
 };
@@ -222,8 +223,8 @@ struct Scene {
   /// section and material above). When given, geometry.width and height are the largest extent
   /// over the pieces and cross_section / material are the first piece's: use beam_pieces().
   std::vector<Segment> segments;
-  std::vector<PointSupport> point_supports;  ///< beams: supports between the ends, by ascending x
-  std::vector<PointMass> masses;             ///< beams: point masses, by ascending x
+  std::vector<PointSupport> point_supports;  ///< beams: between the ends, by ascending x; plates: as written
+  std::vector<PointMass> masses;             ///< beams: by ascending x; plates: as written
   std::vector<PointLoad> loads;
   std::vector<DistributedLoad> line_loads;  ///< beams
   std::vector<DistributedLoad> pressures;   ///< plates

@@ -88,6 +88,9 @@ struct Options {
   bool refine_to_tolerance = false;
   /// Back-end options from the command line (key -> value text), over the scene's [backend.NAME].
   std::vector<std::pair<std::string, std::string>> backend;
+  /// Who gave `backend` (errors name it): "command line" (keys `--option KEY`), or e.g. "solve()"
+  /// for the Python API (keys `options.KEY`).
+  std::string origin = "command line";
   /// Filled by Solver::solve (validated, defaults applied) before the back-end runs.
   ResolvedOptions resolved;
 };

@@ -93,6 +93,25 @@ struct StaticSolution {
 };
 StaticSolution solve_static(const Model& model, const System& sys, const Eigen::VectorXd& f);
 
+/// What one SDE to ground exerts on the model in a static solution: force (N) and moment (N*m),
+/// global axes, at the SDE's point.
+struct SupportForce {
+  int sde = 0;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+};
+struct SupportForces {
+  std::vector<SupportForce> forces;  ///< one per SDE of model.supports, in that order
+  /// || B'(f - K q) - (links' mu + holds' lambda) || / || B' f ||: how far the multipliers found
+  /// balance the unreduced model (rounding; larger where the rigid components are redundant).
+  double residual = 0;
+};
+/// The support reactions of the static solution z under the point actions (`actions`, as given to
+/// point_loads): finite components are -k times the motion of their point; held ones are the multipliers
+/// of the equilibrium of the unreduced model over the builder's coordinates (least squares over
+/// the rigid rows: links between elements and holds to ground), so K's reduction is not undone.
+SupportForces support_forces(const Model& model, const System& sys, const Eigen::VectorXd& z,
+                             const std::vector<PointAction>& actions);
+
 struct FrfResult {
   std::vector<double> omega;                      ///< samples kept
   std::vector<std::complex<double>> receptance;   ///< g' x / unit force

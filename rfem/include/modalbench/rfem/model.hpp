@@ -110,6 +110,9 @@ struct Model {
   double omega_hint = 0;    ///< rad/s, a characteristic low natural frequency (places the eigen shift)
   double length_scale = 1;  ///< m, converts rotations to displacements in tolerance checks
   double loss_factor = 0;   ///< structural damping eta: K (1 + i eta) in FRFs
+  /// The SDEs to ground that stand for a scene's support, by index into `sdes`, with the support's
+  /// name ("x0", "xL", "points[i]"): whose reactions are reported.
+  std::vector<std::pair<int, std::string>> supports;
 
   int dofs_per_element() const { return static_cast<int>(active.size()); }
   long body_dofs() const { return static_cast<long>(elements.size()) * dofs_per_element(); }
