@@ -59,4 +59,10 @@ struct Flexible {
 // Dense path of solve_modes (analysis_dense.cpp).
 Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, double sigma, std::string& method);
 
+/// A beam's support reactions (support_forces, into r.reactions) and, from them, the stress
+/// resultants at the probes by the equilibrium of the free body left of each (equilibrium.hpp).
+/// Not reported (a warning) where the multipliers do not balance the unreduced model to 1e-8.
+void beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
+                    const std::vector<PointAction>& actions, Result& r);
+
 }  // namespace modalbench::rfem::detail

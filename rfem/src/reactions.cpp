@@ -1,18 +1,24 @@
 // rfem support reactions: the forces the supports' SDEs to ground exert in a static solution.
-// Finite components are -k times the motion of their point; a held component was eliminated from the solve, so its force is
-// the multiplier that balances the unreduced model: over the builder's coordinates z0 (q = B z0),
+// Finite components are -k times the motion of their point; a held component was eliminated from
+// the solve, so its force is the multiplier that balances the unreduced model: over the builder's
+// coordinates z0 (q = B z0),
 //   B' (f_q - K_q q) = L' mu + H' lambda,
 // L the rigid links between elements, H the holds, K_q the finite stiffness; solved in the least-
-// squares sense (normal equations), exact where the rows are independent.
+// squares sense (normal equations), exact where the rows are independent. A beam's stress resultants
+// at its probes then follow from the reactions by the free body (beam_reactions).
 #include "modalbench/rfem/analysis.hpp"
 
 #include <Eigen/SparseCholesky>
+
+#include <fmt/format.h>
 
 #include <limits>
 #include <map>
 #include <stdexcept>
 
+#include "modalbench/equilibrium.hpp"
 #include "modalbench/rfem/system.hpp"
+#include "analysis_detail.hpp"
 #include "system_detail.hpp"
 
 namespace modalbench::rfem {
@@ -101,6 +107,31 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
       if (s.sde == sde) ordered.push_back(s);
   out.forces = ordered;
   return out;
+}
+
+/// A beam's support reactions (support_forces) and, from them, the stress resultants at the probes
+/// by the equilibrium of the free body left of each (equilibrium.hpp). Not reported where the
+/// multipliers do not balance the unreduced model to 1e-8 (redundant rigid supports).
+void detail::beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
+                            const std::vector<PointAction>& actions, Result& r) {
+  const SupportForces sf = support_forces(model, sys, z, actions);
+  r.summary.set_diagnostic("reaction_residual", sf.residual);
+  if (!(sf.residual <= 1e-8)) {
+    r.summary.warnings.push_back(fmt::format("support reactions not reported: the constraint forces balance the model "
+                                             "only to {:.2g} (redundant rigid supports)",
+                                             sf.residual));
+    return;
+  }
+  for (std::size_t i = 0; i < sf.forces.size(); ++i) {
+    const SupportForce& f = sf.forces[i];
+    const Sde& sd = model.sdes[static_cast<std::size_t>(f.sde)];
+    r.reactions.push_back({model.supports[i].second, {sd.point.x(), 0.0}, {f.force.x(), f.force.y(), f.force.z()},
+                           {f.moment.x(), f.moment.y(), f.moment.z()}});
+  }
+  for (Deflection& d : r.deflections) {
+    d.forces = free_body_forces(s, r.reactions, d.position[0]);
+    d.has_forces = true;
+  }
 }
 
 }  // namespace modalbench::rfem

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "modalbench/equilibrium.hpp"
 #include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/builders.hpp"
 #include "modalbench/rfem/system.hpp"
@@ -367,35 +366,6 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
   sum.method = method;
 }
 
-namespace {
-
-/// A beam's support reactions (support_forces) and, from them, the stress resultants at the probes
-/// by the equilibrium of the free body left of each (equilibrium.hpp). Not reported where the
-/// multipliers do not balance the unreduced model to 1e-8 (redundant rigid supports).
-void beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
-                    const std::vector<PointAction>& actions, Result& r) {
-  const SupportForces sf = support_forces(model, sys, z, actions);
-  r.summary.set_diagnostic("reaction_residual", sf.residual);
-  if (!(sf.residual <= 1e-8)) {
-    r.summary.warnings.push_back(fmt::format("support reactions not reported: the constraint forces balance the model "
-                                             "only to {:.2g} (redundant rigid supports)",
-                                             sf.residual));
-    return;
-  }
-  for (std::size_t i = 0; i < sf.forces.size(); ++i) {
-    const SupportForce& f = sf.forces[i];
-    const Sde& sd = model.sdes[static_cast<std::size_t>(f.sde)];
-    r.reactions.push_back({model.supports[i].second, {sd.point.x(), 0.0}, {f.force.x(), f.force.y(), f.force.z()},
-                           {f.moment.x(), f.moment.y(), f.moment.z()}});
-  }
-  for (Deflection& d : r.deflections) {
-    d.forces = free_body_forces(s, r.reactions, d.position[0]);
-    d.has_forces = true;
-  }
-}
-
-}  // namespace
-
 void RfemSolver::solve_statics(const Scene& s, const Model& model, const System& sys, Result& r) {
   auto& sum = r.summary;
   const std::vector<PointLoad> loads = s.all_point_loads();
@@ -441,7 +411,7 @@ void RfemSolver::solve_statics(const Scene& s, const Model& model, const System&
     d.theta_z = v[5];
     r.deflections.push_back(d);
   }
-  if (s.is_beam()) beam_reactions(s, model, sys, st.z, actions, r);
+  if (s.is_beam()) detail::beam_reactions(s, model, sys, st.z, actions, r);
   // Normwise backward error of the static solve, from its relative residual ||K z - f|| / ||f||.
   const double fn = f.norm(), backward = fn > 0 ? st.residual * fn / (norm1(sys.K) * st.z.norm() + fn) : 0.0;
   sum.set_diagnostic("static_relative_residual", st.residual);
