@@ -50,15 +50,8 @@ SpMat rows_over_z0(const detail::RigidRows& rows, const SpMat& B) {
 
 SupportForces support_forces(const Model& m, const System& sys, const Eigen::VectorXd& z,
                              const std::vector<PointAction>& actions) {
-  const long nq = m.body_dofs();
   const Eigen::VectorXd q = sys.T * z, fq = detail::point_loads_q(m, actions);
-  SpMat B;
-  if (m.basis.cols() > 0) {
-    B = m.basis;
-  } else {
-    B.resize(nq, nq);
-    B.setIdentity();
-  }
+  const SpMat B = detail::builder_basis(m);
   const Eigen::VectorXd f0 = B.transpose() * fq;
   const Eigen::VectorXd r0 = f0 - B.transpose() * (detail::over_q(m, detail::element_triplets(m, false)) * q);
   const detail::RigidRows rows = detail::rigid_rows(m);

@@ -31,6 +31,8 @@ RigidRows rigid_rows(const Model& m);
 std::vector<Triplet> element_triplets(const Model& m, bool damping);
 /// The generalized force over q of point actions (point_loads before the reduction to z).
 Eigen::VectorXd point_loads_q(const Model& m, const std::vector<std::pair<Eigen::Vector3d, Vector6d>>& actions);
+/// The builder's coordinates z0 (q = B z0): its basis, or q itself.
+SpMat builder_basis(const Model& m);
 /// The triplets as a q x q matrix.
 SpMat over_q(const Model& m, const std::vector<Triplet>& t);
 
