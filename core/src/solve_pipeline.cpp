@@ -74,7 +74,7 @@ class SolvePipeline {
   double since_start() const { return seconds_since(t0_); }
 
   const Solver& solver_;
-  const Scene& scene_;
+  Scene scene_;  // a copy: check_request removes what the back-end does not compute
   const Discretization& mesh_;
   Options opt_;
   Clock::time_point t0_ = Clock::now();
@@ -143,6 +143,14 @@ bool SolvePipeline::check_request() {
     sum.raise(Status::Unsupported, cap_.reason.empty() ? "nothing requested is supported" : cap_.reason);
     return false;
   }
+  // What the back-end does not compute is not asked of it (a partial answer, e.g. statics of the
+  // point loads alone where the distributed ones are not modelled, would pass for the whole).
+  if (!cap_.modes) {
+    scene_.request.modes = 0;
+    scene_.request.shapes.reset();
+  }
+  if (!cap_.statics) scene_.request.probes.clear();
+  if (!cap_.frf) scene_.request.frf.reset();
   light_ = scene_;
   light_.request.frf.reset();
   light_.request.shapes.reset();

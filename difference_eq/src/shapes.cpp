@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "attachments.hpp"
 #include "modalbench/difference_eq/difference_eq.hpp"
 
 namespace modalbench::difference_eq {
@@ -18,7 +19,8 @@ constexpr double kLumped[4][4] = {{1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 1, 0}, {0, 
 
 /// u' M v over the assembled mass: element by element, u_e = (w_e, a s_e, w_e+1, a s_e+1),
 /// M_e = rhoA a / c * table (c = 420 consistent, 2 lumped).
-double mass_product(const RegularBeam& b, MassModel mass, const ModeShape& u, const ModeShape& v) {
+double mass_product(const RegularBeam& b, MassModel mass, const ModeShape& u, const ModeShape& v,
+                    const std::vector<NodalAttachment>& at) {
   const double a = b.a(), scale = b.rhoA * a / (mass == MassModel::Consistent ? 420.0 : 2.0);
   const auto& me = mass == MassModel::Consistent ? kConsistent : kLumped;
   double sum = 0;
@@ -28,7 +30,12 @@ double mass_product(const RegularBeam& b, MassModel mass, const ModeShape& u, co
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) sum += ue[i] * me[i][j] * ve[j];
   }
-  return scale * sum;
+  double points = 0;  // the point masses: m w w' and J (their slope)(slope')
+  for (const NodalAttachment& p : at) {
+    const auto r = static_cast<std::size_t>(p.node);
+    points += p.m * u.w[r] * v.w[r] + p.J * u.slope[r] * v.slope[r];
+  }
+  return scale * sum + points;
 }
 
 /// The rigid-body modes the supports leave (rigid_body_modes): translation w = 1 and/or a
@@ -67,23 +74,31 @@ ModeShapes DifferenceEqSolver::shapes(const Scene& s, const RegularBeam& beam, M
   out.points = s.shape_points();
   out.components = s.shape_components();  // bending x-z: w, theta_y (others stay 0: not modelled)
   out.directions = {false, false, true};
+  const std::vector<NodalAttachment> at = attachments_of(s, beam.R);
   out.total_mass = beam.rhoA * beam.L;
+  for (const NodalAttachment& p : at) out.total_mass += p.m;
+  auto mprod = [&](const ModeShape& u, const ModeShape& v) { return mass_product(beam, mass, u, v, at); };
   const double a = beam.a();
   ModeShape ones;
   ones.w.assign(beam.R + 1, 1.0);
   ones.slope.assign(beam.R + 1, 0.0);
   // Rigid modes first (omega = 0 exactly), M-orthonormalized among themselves (Gram-Schmidt).
-  std::vector<ModeShape> nodal = rigid_shapes(beam);
+  std::vector<ModeShape> nodal = at.empty() ? rigid_shapes(beam) : rigid_shapes_attached(beam, at);
   nodal.resize(std::min<std::size_t>(nodal.size(), static_cast<std::size_t>(rigid)));
   for (std::size_t i = 1; i < nodal.size(); ++i) {
-    const double c = mass_product(beam, mass, nodal[i], nodal[0]) / mass_product(beam, mass, nodal[0], nodal[0]);
+    const double c = mprod(nodal[i], nodal[0]) / mprod(nodal[0], nodal[0]);
     for (long r = 0; r <= beam.R; ++r) {
       nodal[i].w[r] -= c * nodal[0].w[r];
       nodal[i].slope[r] -= c * nodal[0].slope[r];
     }
   }
   for (std::size_t k = static_cast<std::size_t>(rigid); k < omega.size(); ++k)
-    nodal.push_back(mode_shape(beam, mass, omega[k]));
+    if (at.empty()) {
+      nodal.push_back(mode_shape(beam, mass, omega[k]));
+    } else {
+      double backward_error = 0;
+      nodal.push_back(mode_shape_attached(beam, mass, at, omega[k], backward_error));
+    }
   for (const ModeShape& u : nodal) {
     std::vector<std::vector<double>> mode(out.components.size(), std::vector<double>(out.points.size(), 0.0));
     for (std::size_t p = 0; p < out.points.size(); ++p) {
@@ -107,10 +122,13 @@ ModeShapes DifferenceEqSolver::shapes(const Scene& s, const RegularBeam& beam, M
       }
     }
     out.values.push_back(std::move(mode));
-    out.generalized_mass.push_back(mass_product(beam, mass, u, u));
-    out.participation.push_back({0.0, 0.0, mass_product(beam, mass, u, ones)});
+    out.generalized_mass.push_back(mprod(u, u));
+    out.participation.push_back({0.0, 0.0, mprod(u, ones)});
   }
-  out.note = "closed-form nodal shapes (null vector of the characteristic matrix; rigid modes M-orthonormalized), "
+  out.note = std::string(at.empty() ? "closed-form nodal shapes (null vector of the characteristic matrix; "
+                                     : "nodal shapes by inverse iteration on the assembled model with the point "
+                                       "supports and masses (") +
+             "rigid modes M-orthonormalized), "
              "interpolated with the elements' Hermite cubics, normalized in the model's " + to_string(mass) +
              " mass matrix; bending in x-z only";
   finish_mode_shapes(out);

@@ -7,6 +7,8 @@
 #include "modalbench/difference_eq/assembled.hpp"
 #include "modalbench/difference_eq/difference_eq.hpp"
 #include "modalbench/timer.hpp"
+#include "attachments.hpp"
+#include "modalbench/equilibrium.hpp"
 
 namespace modalbench::difference_eq {
 
@@ -29,6 +31,9 @@ long base_mesh(const Scene& s) {
   std::vector<double> xs;
   for (const auto& l : s.loads) xs.push_back(l.x);
   for (const auto& p : s.request.probes) xs.push_back(p[0]);
+  for (const auto& p : s.point_supports) xs.push_back(p.x);
+  for (const auto& m : s.masses) xs.push_back(m.x);
+  for (const auto& q : s.line_loads) xs.insert(xs.end(), {q.from[0], q.to[0]});
   long base = 1;
   for (double x : xs) {
     const long q = denominator(x / s.geometry.length, 4096);
@@ -37,6 +42,74 @@ long base_mesh(const Scene& s) {
     if (base > 1'000'000) return 0;
   }
   return base;
+}
+
+/// Modes with supports or masses at nodes (attachments.hpp): the sub-chain count and bisection;
+/// every frequency confirmed by the assembled model's own Sturm count (another computation, O(R))
+/// up to 20000 elements, and for R up to `max_check_R` by its mode shape's residual.
+void attached_modes(const Scene& s, const RegularBeam& beam, MassModel mass, const std::vector<NodalAttachment>& at,
+                    long max_check_R, Result& res) {
+  auto& sum = res.summary;
+  std::string problem;
+  const Spectrum sp = natural_frequencies_attached(beam, mass, at, s.request.modes, problem);
+  if (!problem.empty()) sum.raise(Status::NumericalIssue, "difference_eq: " + problem);
+  sum.set_diagnostic("count_evaluations", static_cast<double>(sp.count_evaluations));
+  for (std::size_t i = 0; i < sp.omega_rad_s.size(); ++i) {
+    res.frequencies_rad_s.push_back(sp.omega_rad_s[i]);
+    res.mode_families.push_back(static_cast<int>(i) < sp.rigid ? ModeFamily::Rigid : ModeFamily::BendingXZ);
+  }
+  if (static_cast<int>(sp.omega_rad_s.size()) < s.request.modes)
+    sum.warnings.push_back(fmt::format("the model has only {} natural frequencies ({} mass, R={}); {} requested",
+                                       sp.available, to_string(mass), beam.R, s.request.modes));
+  constexpr long kAssembledCountMaxR = 20000;
+  long unconfirmed = 0;
+  double worst = 0;
+  for (std::size_t i = static_cast<std::size_t>(sp.rigid); i < sp.omega_rad_s.size(); ++i) {
+    const double l = sp.omega_rad_s[i] * sp.omega_rad_s[i];
+    if (beam.R <= kAssembledCountMaxR &&
+        !(assembled_count_attached(beam, mass, at, l * (1.0 - 1e-8)) <= static_cast<long>(i) &&
+          assembled_count_attached(beam, mass, at, l * (1.0 + 1e-8)) >= static_cast<long>(i) + 1))
+      ++unconfirmed;
+    if (beam.R <= max_check_R) {
+      double be = 0;
+      mode_shape_attached(beam, mass, at, sp.omega_rad_s[i], be);
+      worst = std::max(worst, be);
+    }
+  }
+  sum.set_diagnostic("root_bracket_relative", sp.max_bracket);
+  if (unconfirmed > 0)
+    sum.raise(Status::NumericalIssue,
+              fmt::format("{} frequency(ies) not confirmed by the assembled model's count at omega^2 (1 -+ 1e-8)",
+                          unconfirmed));
+  if (beam.R <= max_check_R) sum.note_backward_error(worst);
+  if (s.request.shapes && !sp.omega_rad_s.empty())
+    res.mode_shapes = DifferenceEqSolver::shapes(s, beam, mass, sp.omega_rad_s, sp.rigid);
+}
+
+/// The supports' reactions (what each exerts on the beam: Fz, and My = -(the moment conjugate to the
+/// slope), theta_y being -dw/dx) and, from them by the equilibrium of the free body left of each
+/// probe, its bending moment and shear force (bending in x-z: the other resultants are not modelled).
+void add_reactions_and_forces(const Scene& s, const RegularBeam& beam, const StaticSolution& st,
+                              const std::vector<std::array<double, 2>>& point_reactions, Result& res) {
+  auto add = [&](const std::string& name, double x, double force, double moment) {
+    Reaction r;
+    r.support = name;
+    r.position = {x, 0.0};
+    r.force = {0.0, 0.0, force};
+    r.moment = {0.0, -moment, 0.0};
+    res.reactions.push_back(r);
+  };
+  if (beam.k0 > 0 || beam.r0 > 0) add("x0", 0.0, st.reactions[0], st.reactions[1]);
+  if (beam.kL > 0 || beam.rL > 0) add("xL", beam.L, st.reactions[2], st.reactions[3]);
+  for (std::size_t i = 0; i < s.point_supports.size(); ++i)  // attachments_of: the supports first
+    add(fmt::format("points[{}]", i), s.point_supports[i].x, point_reactions[i][0], point_reactions[i][1]);
+  for (Deflection& d : res.deflections) {
+    const InternalForces f = free_body_forces(s, res.reactions, d.position[0]);
+    d.forces = {};
+    d.forces.My = f.My;
+    d.forces.Qz = f.Qz;
+    d.has_forces = true;
+  }
 }
 
 }  // namespace
@@ -66,19 +139,15 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
                "identical elements";
     return c;
   }
-  if (!s.point_supports.empty() || !s.masses.empty()) {
-    c.reason = "difference_eq does not yet model supports between the ends or point masses (its closed forms "
-               "cover end springs and nodal loads)";
-    return c;
-  }
   c.modes = c.statics = true;
   c.frf = false;
   // The model restrictions (Euler-Bernoulli, bending in x-z) are stated by do_solve in the
   // result's warnings; here only what is not computed at all.
   c.reason = "FRF is not implemented by difference_eq (modes and statics only)";
-  if (!s.line_loads.empty() || s.gravity) {
+  if (!s.point_supports.empty() && rigid_body_modes(beam_of(s, 1)) > 0) {
     c.statics = false;
-    c.reason += "; distributed loads and gravity are not yet modelled (nodal forces and moments only)";
+    c.reason += "; statics with supports between the ends need end supports that hold the beam by themselves "
+                "(the points' reactions are superposed on that beam's closed form)";
   }
   return c;
 }
@@ -179,21 +248,28 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   sum.converges_to_scene_theory = s.theory == Theory::EulerBernoulli;
   sum.model = "a regular chain of Hermite Euler-Bernoulli elements, tending to the euler-bernoulli beam";
 
-  // Loads must sit on nodes.
+  // Loads, supports between the ends and masses must sit on nodes.
+  const std::vector<NodalAttachment> attached = attachments_of(s, R);
+  const std::vector<ElementLoad> element_loads = element_loads_of(s, R);
   std::vector<NodalLoad> loads;
   bool other_components = false;
-  for (std::size_t i = 0; i < s.loads.size(); ++i) {
-    const auto& l = s.loads[i];
+  const std::vector<PointLoad> point_loads = s.all_point_loads();
+  for (std::size_t i = 0; i < point_loads.size(); ++i) {
+    const auto& l = point_loads[i];
     const double pos = l.x / L * static_cast<double>(R);
     const long r = std::lround(pos);
     if (std::abs(l.x - static_cast<double>(r) * L / static_cast<double>(R)) > kNodeTol * L)
-      throw InputError(s.source, fmt::format("loads[{}].x", i),
+      throw InputError(s.source, i < s.loads.size() ? fmt::format("loads[{}].x", i) : fmt::format("masses[{}].x", i - s.loads.size()),
                        fmt::format("not at a node of mesh R={}: x = {} m, nodes at multiples of L/R = {} m "
                                    "(nearest x = {} m)",
                                    R, l.x, L / static_cast<double>(R), static_cast<double>(r) * L / static_cast<double>(R)));
     loads.push_back({r, l.Fz, -l.My});
     other_components = other_components || l.Fx != 0 || l.Fy != 0 || l.Mx != 0 || l.Mz != 0;
   }
+  for (const NodalLoad& l : equivalent_nodal_loads(beam, element_loads)) loads.push_back(l);
+  for (const auto& q : s.line_loads)
+    other_components = other_components || q.qx[0] != 0 || q.qx[1] != 0 || q.qy[0] != 0 || q.qy[1] != 0;
+  if (s.gravity) other_components = other_components || (*s.gravity)[0] != 0 || (*s.gravity)[1] != 0;
 
   sum.method = fmt::format(
       "difference_eq: regular discrete Euler-Bernoulli beam, R={} Hermite elements (bending in x-z); "
@@ -208,13 +284,22 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
     sum.warnings.push_back("physics '" + to_string(s.physics) +
                            "': only bending in x-z is solved (axial, torsion and x-y bending are not modelled)");
   if (other_components)
-    sum.warnings.push_back("load components other than Fz and My are ignored (bending in x-z only)");
+    sum.warnings.push_back("load and gravity components other than those of bending in x-z (Fz, My, qz, g_z) are "
+                           "ignored");
+  if (!attached.empty() || !element_loads.empty())
+    sum.method += fmt::format("; {} support(s) / mass(es) at nodes: sub-chain closed forms assembled over their nodes "
+                              "(count sum J0 + neg K), statics by superposing the point reactions; {} line load(s) "
+                              "as their exact nodal equivalents",
+                              attached.size(), element_loads.size());
 
   sum.timings_s.build += timer.lap();
 
   // Free vibration.
   const int k = s.request.modes;
-  if (k > 0) {
+  if (k > 0 && !attached.empty()) {
+    attached_modes(s, beam, mass, attached, residual_check_max_R, res);
+    sum.timings_s.modes += timer.lap();
+  } else if (k > 0) {
     const Spectrum sp = natural_frequencies(beam, mass, k);
     sum.set_diagnostic("count_evaluations", static_cast<double>(sp.count_evaluations));
     sum.set_diagnostic("determinant_evaluations", static_cast<double>(sp.determinant_evaluations));
@@ -290,11 +375,16 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   // Statics at the probes.
   if (!s.request.probes.empty()) {
     StaticSolution st;
+    std::vector<std::array<double, 2>> point_reactions;
     try {
-      st = solve_static(beam, loads, static_method);
+      st = solve_static_attached(beam, loads, attached, static_method, point_reactions);
     } catch (const Mechanism& e) {
       sum.raise(Status::InvalidInput,
                 InputError(s.source, "supports", std::string("static solve impossible: ") + e.what()).what());
+      sum.timings_s.statics += timer.lap();
+      return;
+    } catch (const std::runtime_error& e) {
+      sum.raise(Status::NumericalIssue, std::string("difference_eq: statics: ") + e.what());
       sum.timings_s.statics += timer.lap();
       return;
     }
@@ -307,7 +397,7 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
         d.w = st.w[r];
         d.theta_y = -st.slope[r];
       } else {
-        const auto v = interpolate(beam, st, p[0]);
+        const auto v = interpolate_loaded(beam, st, element_loads, p[0]);
         d.w = v[0];
         d.theta_y = -v[1];
         ++between;
@@ -316,14 +406,15 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
     }
     if (between)
       sum.warnings.push_back(fmt::format("{} probe(s) between nodes: Hermite interpolation of the element's nodal "
-                                         "values (exact for nodal loads, the element being unloaded)",
+                                         "values, plus its clamped-clamped solution under a line load (exact)",
                                          between));
     for (const auto& w : st.warnings) sum.warnings.push_back(w);
+    add_reactions_and_forces(s, beam, st, point_reactions, res);
     sum.set_diagnostic("support_condition", st.support_condition);
     // Near a mechanism (support_flexibility above 1e4 L^3/EI) the deflections are mostly
     // rigid-body motion; the closed form keeps their digits, so this is information, not a warning.
     sum.set_diagnostic("support_flexibility", st.support_flexibility);
-    sum.note_backward_error(static_residual(beam, loads, st));
+    sum.note_backward_error(attached_static_residual(beam, loads, attached, st, point_reactions));
     sum.timings_s.statics += timer.lap();
   }
 }

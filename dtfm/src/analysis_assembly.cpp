@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include "analysis_detail.hpp"
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
@@ -47,45 +49,55 @@ double log_tdf_of(const LongSegment& s) { return s.log_abs_det_tdf; }
 double log_tdf_of(const LongSegmentC&) { return 0.0; }
 
 template <class Tri, class Mat, class Scalar>
-AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, const Mat& A, const std::vector<double>& x,
+AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, Scalar lambda, const std::vector<double>& x,
                            double h_base, double& max_asym) {
   const int nn = static_cast<int>(x.size()), mc = c.mc;
-  using Seg = decltype(long_segment(A, 1.0, 0));
-  std::vector<std::pair<double, Seg>> cache;
+  using Seg = decltype(long_segment(std::declval<Mat>(), 1.0, 0));
+  std::vector<Mat> A(static_cast<std::size_t>(c.pieces()));
+  std::vector<std::tuple<double, int, Seg>> cache;
   AssemblyInfo info;
   for (int i = 0; i + 1 < nn; ++i) {
     const double h = x[i + 1] - x[i];
+    const int piece = c.piece_of(x[i], x[i + 1]);
     const Seg* hit = nullptr;
     for (const auto& e : cache)
-      if (std::abs(h - e.first) <= 1e-9 * h) hit = &e.second;
+      if (std::get<1>(e) == piece && std::abs(h - std::get<0>(e)) <= 1e-9 * h) hit = &std::get<2>(e);
     if (!hit) {
+      Mat& Ap = A[static_cast<std::size_t>(piece)];
+      if (Ap.size() == 0) Ap = c.state(lambda, piece);
       const int levels = detail::doubling_levels(h, h_base);
-      cache.emplace_back(h, long_segment(A, h, levels));
-      hit = &cache.back().second;
+      cache.emplace_back(h, piece, long_segment(Ap, h, levels));
+      hit = &std::get<2>(cache.back());
       max_asym = std::isfinite(hit->asymmetry) ? std::max(max_asym, hit->asymmetry) : kInf;
       info.min_pivot_rel = std::min(info.min_pivot_rel, hit->min_pivot_rel);
     }
     info.clamped_below += clamped_of(*hit);
     info.log_poles += log_tdf_of(*hit);
-    if (i == 0 || i + 2 == nn) {
+    const auto* left = c.condition_at(x, static_cast<std::size_t>(i));
+    const auto* right = c.condition_at(x, static_cast<std::size_t>(i) + 1);
+    if (left || right) {
       Mat k = hit->K;
-      if (i == 0) transform_end(k, c.ends[0].B, mc, true);
-      if (i + 2 == nn) transform_end(k, c.ends[1].B, mc, false);
+      if (left) transform_end(k, left->B, mc, true);
+      if (right) transform_end(k, right->B, mc, false);
       K.add_segment(i, k);
     } else {
       K.add_segment(i, hit->K);
     }
   }
-  for (int e = 0; e < 2; ++e) {
-    const auto& ce = c.ends[e];
-    const int node = e == 0 ? 0 : nn - 1;
-    if (ce.n_free > 0 && ce.K.norm() > 0) {
+  // Springs and masses on the admissible motions of every node with conditions; the rest held.
+  for (int node = 0; node < nn; ++node) {
+    const auto* ce = c.condition_at(x, static_cast<std::size_t>(node));
+    if (!ce) continue;
+    Mat term = Mat::Zero(ce->n_free, ce->n_free);
+    if (ce->n_free > 0 && ce->K.size() > 0) term += ce->K.template cast<Scalar>();
+    if (ce->mass_scaled.size() > 0) term -= lambda * ce->mass_scaled.template cast<Scalar>();
+    if (ce->n_free > 0 && term.norm() > 0) {
       Mat pad = Mat::Zero(2 * mc, 2 * mc);
-      if (e == 0) pad.topLeftCorner(ce.n_free, ce.n_free) = ce.K.template cast<Scalar>();
-      else pad.block(mc, mc, ce.n_free, ce.n_free) = ce.K.template cast<Scalar>();
-      K.add_segment(e == 0 ? 0 : nn - 2, pad);
+      if (node + 1 < nn) pad.topLeftCorner(ce->n_free, ce->n_free) = term;
+      else pad.block(mc, mc, ce->n_free, ce->n_free) = term;
+      K.add_segment(node + 1 < nn ? node : nn - 2, pad);
     }
-    for (int j = ce.n_free; j < mc; ++j) K.hold(node, j);
+    for (int j = ce->n_free; j < mc; ++j) K.hold(node, j);
   }
   return info;
 }
@@ -134,7 +146,7 @@ LineAnalysis::Assembled LineAnalysis::assemble(const ClassLine& c, double lambda
   Assembled out{BlockTridiagonal(static_cast<int>(mesh.x.size()), c.mc), {}};
   double& asymmetry = tally_ ? tally_->asymmetry : max_asymmetry_;
   long& unknowns = tally_ ? tally_->unknowns : max_unknowns_;
-  out.info = assemble_into<BlockTridiagonal, Eigen::MatrixXd, double>(out.K, c, c.state(lambda), mesh.x,
+  out.info = assemble_into<BlockTridiagonal, Eigen::MatrixXd, double>(out.K, c, lambda, mesh.x,
                                                                       mesh.h_base, asymmetry);
   unknowns = std::max<long>(unknowns, out.K.free_dofs());
   return out;
@@ -144,7 +156,7 @@ ComplexBlockTridiagonal LineAnalysis::assemble(const ClassLine& c, std::complex<
   ComplexBlockTridiagonal K(static_cast<int>(mesh.x.size()), c.mc);
   double& asymmetry = tally_ ? tally_->asymmetry : max_asymmetry_;
   long& unknowns = tally_ ? tally_->unknowns : max_unknowns_;
-  assemble_into<ComplexBlockTridiagonal, Eigen::MatrixXcd, std::complex<double>>(K, c, c.state(lambda), mesh.x,
+  assemble_into<ComplexBlockTridiagonal, Eigen::MatrixXcd, std::complex<double>>(K, c, lambda, mesh.x,
                                                                                  mesh.h_base, asymmetry);
   unknowns = std::max<long>(unknowns, K.free_dofs());
   return K;

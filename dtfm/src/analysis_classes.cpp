@@ -14,6 +14,91 @@ namespace modalbench::dtfm {
 
 LineAnalysis::~LineAnalysis() = default;
 
+namespace {
+
+using End = LineAnalysis::ClassLine::End;
+
+/// The scaled class operator (St, C, Qt, M) of energy-form matrices.
+struct Projected {
+  Eigen::MatrixXd St, C, Qt, M;
+};
+Projected project(const LineAnalysis::ClassLine& l, const Eigen::MatrixXd& Vs, const Eigen::MatrixXd& M,
+                  const Eigen::MatrixXd& C, const Eigen::MatrixXd& S, const Eigen::MatrixXd& X,
+                  const Eigen::MatrixXd& Q1) {
+  const Eigen::MatrixXd& W = l.W;
+  const double sigma = l.sigma;
+  Projected p;
+  const Eigen::MatrixXd Cc = sigma * (Vs.transpose() * C * Vs);
+  const Eigen::MatrixXd Sc = l.Winv * S * W;
+  const Eigen::MatrixXd Xc = W.transpose() * X * W / sigma;
+  const Eigen::MatrixXd Qc = W.transpose() * Q1 * W / sigma;
+  p.C = 0.5 * (Cc + Cc.transpose());
+  p.M = W.transpose() * M * W / sigma;
+  p.M = 0.5 * (p.M + p.M.transpose());
+  p.St = Sc + p.C * Xc;
+  p.Qt = Qc - Xc.transpose() * p.C * Xc;
+  p.Qt = 0.5 * (p.Qt + p.Qt.transpose());
+  return p;
+}
+
+/// A node condition of the model in the class's coordinates.
+End class_end(const LineAnalysis::ClassLine& l, const EndCondition& end, double x) {
+  const int mc = l.mc;
+  const Eigen::MatrixXd& W = l.W;
+  End ce;
+  ce.x = x;
+  Eigen::MatrixXd Nc(mc, 0);
+  if (end.N.cols() > 0) {
+    const Eigen::MatrixXd raw = l.Winv * end.N;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(raw, Eigen::ComputeThinU);
+    if (svd.info() != Eigen::Success) throw std::runtime_error("dtfm: SVD of the end conditions failed");
+    const auto& sv = svd.singularValues();
+    // Relative to the size of the map, not to the largest singular value: an end whose
+    // admissible motions all lie outside this class projects to rounding noise, whose
+    // largest value must not pass as an admissible direction (a pinned end of a 2 x 2
+    // section let the axial class move freely: rigid 0 and the free-free axial mode).
+    const double map_scale = l.Winv.norm();
+    int r = 0;
+    for (Eigen::Index i = 0; i < sv.size(); ++i)
+      if (sv[i] > 1e-10 * map_scale) ++r;
+    Nc = svd.matrixU().leftCols(r);
+  }
+  ce.n_free = static_cast<int>(Nc.cols());
+  ce.B = Eigen::MatrixXd::Identity(mc, mc);
+  if (ce.n_free > 0) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(Nc);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(mc, mc);
+    ce.B.leftCols(ce.n_free) = Nc;
+    ce.B.rightCols(mc - ce.n_free) = Q.rightCols(mc - ce.n_free);
+    // Springs 1/2 a^T K a with q = N a, a = N^T q = N^T W Nc b. An end motion outside this
+    // class projects to rounding (1e-17 of the map): zero it, or its spring would leak into
+    // the class squared and pass for a support of a motion the scene leaves free (a statics
+    // mechanism taken for a near-mechanism on a 1e-45 spring).
+    Eigen::MatrixXd G = end.N.transpose() * W * Nc;
+    const double g_floor = 64.0 * std::numeric_limits<double>::epsilon() * G.cwiseAbs().maxCoeff();
+    G = G.unaryExpr([g_floor](double g) { return std::abs(g) <= g_floor ? 0.0 : g; });
+    ce.K = G.transpose() * end.K * G / l.sigma;
+    ce.K = 0.5 * (ce.K + ce.K.transpose());
+  } else {
+    ce.K = Eigen::MatrixXd(0, 0);
+  }
+  if (end.mass.size() > 0) {
+    Eigen::MatrixXd Mc = W.transpose() * end.mass * W;
+    const double floor = 64.0 * std::numeric_limits<double>::epsilon() * Mc.cwiseAbs().maxCoeff();
+    Mc = Mc.unaryExpr([floor](double v) { return std::abs(v) <= floor ? 0.0 : v; });
+    if (Mc.cwiseAbs().maxCoeff() > 0) {
+      ce.Mc = 0.5 * (Mc + Mc.transpose());
+      ce.Mfields = end.mass;
+      const Eigen::MatrixXd Bf = ce.B.leftCols(ce.n_free);
+      ce.mass_scaled = Bf.transpose() * ce.Mc * Bf / l.sigma;
+      ce.mass_scaled = 0.5 * (ce.mass_scaled + ce.mass_scaled.transpose()).eval();
+    }
+  }
+  return ce;
+}
+
+}  // namespace
+
 LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : model_(model), ctl_(controls) {
   const int m = model.m;
   Eigen::VectorXd s(m);
@@ -26,64 +111,25 @@ LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : mo
     line->mc = static_cast<int>(fc.V.cols());
     line->family = fc.family;
     line->family_motions = fc.family_motions;
+    line->length = model.length;
     line->W = s.asDiagonal() * fc.V;
     line->Winv = fc.V.transpose() * si.asDiagonal();
-    const Eigen::MatrixXd& W = line->W;
     const Eigen::MatrixXd Vs = si.asDiagonal() * fc.V;  // strains scale like q'
-    Eigen::MatrixXd Mc = W.transpose() * model.M * W;
-    double sigma = Mc.norm() * model.lambda_scale;
+    double sigma = (line->W.transpose() * model.M * line->W).norm() * model.lambda_scale;
     if (!(sigma > 0) || !std::isfinite(sigma)) sigma = 1.0;
     line->sigma = sigma;
-    const Eigen::MatrixXd Cc = sigma * (Vs.transpose() * model.C * Vs);
-    const Eigen::MatrixXd Sc = line->Winv * model.S * W;
-    const Eigen::MatrixXd Xc = W.transpose() * model.X * W / sigma;
-    const Eigen::MatrixXd Qc = W.transpose() * model.Q1 * W / sigma;
-    line->C = 0.5 * (Cc + Cc.transpose());
-    line->M = Mc / sigma;
-    line->M = 0.5 * (line->M + line->M.transpose());
-    line->St = Sc + line->C * Xc;
-    line->Qt = Qc - Xc.transpose() * line->C * Xc;
-    line->Qt = 0.5 * (line->Qt + line->Qt.transpose());
-    for (int e = 0; e < 2; ++e) {
-      const auto& end = model.ends[e];
-      auto& ce = line->ends[e];
-      const int mc = line->mc;
-      Eigen::MatrixXd Nc(mc, 0);
-      if (end.N.cols() > 0) {
-        const Eigen::MatrixXd raw = line->Winv * end.N;
-        Eigen::JacobiSVD<Eigen::MatrixXd> svd(raw, Eigen::ComputeThinU);
-        if (svd.info() != Eigen::Success) throw std::runtime_error("dtfm: SVD of the end conditions failed");
-        const auto& sv = svd.singularValues();
-        // Relative to the size of the map, not to the largest singular value: an end whose
-        // admissible motions all lie outside this class projects to rounding noise, whose
-        // largest value must not pass as an admissible direction (a pinned end of a 2 x 2
-        // section let the axial class move freely: rigid 0 and the free-free axial mode).
-        const double map_scale = line->Winv.norm();
-        int r = 0;
-        for (Eigen::Index i = 0; i < sv.size(); ++i)
-          if (sv[i] > 1e-10 * map_scale) ++r;
-        Nc = svd.matrixU().leftCols(r);
-      }
-      ce.n_free = static_cast<int>(Nc.cols());
-      ce.B = Eigen::MatrixXd::Identity(mc, mc);
-      if (ce.n_free > 0) {
-        Eigen::HouseholderQR<Eigen::MatrixXd> qr(Nc);
-        const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(mc, mc);
-        ce.B.leftCols(ce.n_free) = Nc;
-        ce.B.rightCols(mc - ce.n_free) = Q.rightCols(mc - ce.n_free);
-        // Springs 1/2 a^T K a with q = N a, a = N^T q = N^T W Nc b. An end motion outside this
-        // class projects to rounding (1e-17 of the map): zero it, or its spring would leak into
-        // the class squared and pass for a support of a motion the scene leaves free (a statics
-        // mechanism taken for a near-mechanism on a 1e-45 spring).
-        Eigen::MatrixXd G = end.N.transpose() * W * Nc;
-        const double g_floor = 64.0 * std::numeric_limits<double>::epsilon() * G.cwiseAbs().maxCoeff();
-        G = G.unaryExpr([g_floor](double g) { return std::abs(g) <= g_floor ? 0.0 : g; });
-        ce.K = G.transpose() * end.K * G / sigma;
-        ce.K = 0.5 * (ce.K + ce.K.transpose());
-      } else {
-        ce.K = Eigen::MatrixXd(0, 0);
-      }
+    const Projected p = project(*line, Vs, model.M, model.C, model.S, model.X, model.Q1);
+    line->St = p.St;
+    line->C = p.C;
+    line->Qt = p.Qt;
+    line->M = p.M;
+    line->first_to = model.steps.empty() ? model.length : model.first_piece_to;
+    for (const PieceOperator& op : model.steps) {
+      const Projected q = project(*line, Vs, op.M, op.C, op.S, op.X, op.Q1);
+      line->steps.push_back({op.x_to, q.St, q.C, q.Qt, q.M});
     }
+    for (int e = 0; e < 2; ++e) line->ends[e] = class_end(*line, model.ends[e], e == 0 ? 0.0 : model.length);
+    for (const PointCondition& pc : model.points) line->points.push_back(class_end(*line, pc.cond, pc.x));
     lines_.push_back(std::move(line));
   }
 }

@@ -20,24 +20,69 @@ struct LineAnalysis::ClassLine {
   int index = 0, mc = 0;
   ModeFamily family = ModeFamily::Unknown;
   Eigen::MatrixXd W, Winv;
-  Eigen::MatrixXd St, C, Qt, M;
+  Eigen::MatrixXd St, C, Qt, M;  // the operator (a stepped beam: its first piece's)
   double sigma = 1;
+  double length = 0;
+  /// A node's conditions: an end's, or a support / point mass between the ends.
   struct End {
     Eigen::MatrixXd B;  // mc x mc orthogonal; the first n_free columns are the admissible motions
     int n_free = 0;
     Eigen::MatrixXd K;  // springs on those coordinates
+    double x = 0;
+    Eigen::MatrixXd Mc;       // point masses, mc x mc in class coordinates (W^T mass W, unscaled); empty: none
+    Eigen::MatrixXd Mfields;  // the same over the fields (m x m), for participations
+    Eigen::MatrixXd mass_scaled;  // B^T Mc B / sigma over the admissible motions (K - lambda this); empty: none
   } ends[2];
+  std::vector<End> points;  // between the ends, by ascending x
+  /// Stepped beams: the operator of every piece after the first, each from the previous one's
+  /// x_to (the first over [0, first_to]).
+  struct Piece {
+    double x_to = 0;
+    Eigen::MatrixXd St, C, Qt, M;
+  };
+  std::vector<Piece> steps;
+  double first_to = 0;
   Eigen::MatrixXd family_motions;  // physical, m x r (beams)
-  double re0 = -1, im0 = -1;       // wavenumber bounds at lambda = 0 (cached)
+  double re0 = -1, im0 = -1;       // wavenumber bounds at lambda = 0 (cached, over the pieces)
+
+  int pieces() const { return 1 + static_cast<int>(steps.size()); }
+  /// The piece holding the segment [xa, xb] (nodes sit at every step).
+  int piece_of(double xa, double xb) const {
+    const double mid = 0.5 * (xa + xb);
+    if (steps.empty() || mid <= first_to) return 0;
+    for (std::size_t k = 0; k < steps.size(); ++k)
+      if (mid <= steps[k].x_to) return static_cast<int>(k) + 1;
+    return static_cast<int>(steps.size());
+  }
+  const Eigen::MatrixXd& M_of(int piece) const { return piece == 0 ? M : steps[static_cast<std::size_t>(piece) - 1].M; }
+  const Eigen::MatrixXd& St_of(int piece) const { return piece == 0 ? St : steps[static_cast<std::size_t>(piece) - 1].St; }
+  const Eigen::MatrixXd& Qt_of(int piece) const { return piece == 0 ? Qt : steps[static_cast<std::size_t>(piece) - 1].Qt; }
+  const Eigen::MatrixXd& C_of(int piece) const { return piece == 0 ? C : steps[static_cast<std::size_t>(piece) - 1].C; }
+  /// Where steps and points need nodes.
+  std::vector<double> required_nodes() const {
+    std::vector<double> out;
+    if (!steps.empty()) out.push_back(first_to);
+    for (std::size_t k = 0; k + 1 < steps.size(); ++k) out.push_back(steps[k].x_to);
+    for (const End& p : points) out.push_back(p.x);
+    return out;
+  }
+  /// The conditions at node i of nodes x: an end's, a point's, or none.
+  const End* condition_at(const std::vector<double>& x, std::size_t i) const {
+    if (i == 0) return &ends[0];
+    if (i + 1 == x.size()) return &ends[1];
+    for (const End& p : points)
+      if (std::abs(p.x - x[i]) <= 1e-12 * length) return &p;
+    return nullptr;
+  }
 
   template <class Scalar>
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> state(Scalar lambda) const {
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> state(Scalar lambda, int piece = 0) const {
     using Mat = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
     Mat A(2 * mc, 2 * mc);
-    A.topLeftCorner(mc, mc) = (-St).template cast<Scalar>();
-    A.topRightCorner(mc, mc) = C.template cast<Scalar>();
-    A.bottomLeftCorner(mc, mc) = Qt.template cast<Scalar>() - lambda * M.template cast<Scalar>();
-    A.bottomRightCorner(mc, mc) = St.transpose().template cast<Scalar>();
+    A.topLeftCorner(mc, mc) = (-St_of(piece)).template cast<Scalar>();
+    A.topRightCorner(mc, mc) = C_of(piece).template cast<Scalar>();
+    A.bottomLeftCorner(mc, mc) = Qt_of(piece).template cast<Scalar>() - lambda * M_of(piece).template cast<Scalar>();
+    A.bottomRightCorner(mc, mc) = St_of(piece).transpose().template cast<Scalar>();
     return A;
   }
 };
@@ -76,9 +121,26 @@ struct RigidLine {
   Eigen::MatrixXd V0;            ///< mc x r: orthonormal rigid section motions at x = 0
   Eigen::MatrixXd Rc;            ///< r x r: phi(x) = exp(-St x) V0 Rc is 1 at one anchor, 0 at the others
   struct Anchor {
-    int end = 0, coord = 0;  ///< end (0: x = 0, 1: x = L) and its coordinate (column of line.ends[end].B)
+    int end = 0, coord = 0;  ///< condition (cond(end)) and its coordinate (column of its B)
     double k = 0;            ///< its spring (inf: held; 0: none)
   };
+  /// The line's node conditions: 0 and 1 its ends, 2 + i its i-th point.
+  int conditions() const { return 2 + static_cast<int>(line.points.size()); }
+  const LineAnalysis::ClassLine::End& cond(int k) const {
+    return k == 0 ? line.ends[0] : k == 1 ? line.ends[1] : line.points[static_cast<std::size_t>(k) - 2];
+  }
+  LineAnalysis::ClassLine::End& cond(int k) {
+    return k == 0 ? line.ends[0] : k == 1 ? line.ends[1] : line.points[static_cast<std::size_t>(k) - 2];
+  }
+  /// The node of condition k among nodes x.
+  int node_of(int k, const std::vector<double>& x) const {
+    if (k == 0) return 0;
+    const int nn = static_cast<int>(x.size());
+    if (k == 1) return nn - 1;
+    for (int i = 1; i + 1 < nn; ++i)
+      if (std::abs(x[static_cast<std::size_t>(i)] - cond(k).x) <= 1e-12 * line.length) return i;
+    return -1;
+  }
   std::vector<Anchor> anchors;  ///< r of them, stiffest first
   std::vector<int> free_a;      ///< amplitudes a spring restrains (not held), in anchor order
   int unrestrained = 0;         ///< amplitudes no support reaches: a mechanism
@@ -86,8 +148,10 @@ struct RigidLine {
 
   /// Rigid basis in class coordinates at x (mc x r).
   Eigen::MatrixXd phi(double x) const;
-  /// The same in a node's coordinates: end < 0 an interior node, else end node `end` (B coordinates).
-  Eigen::MatrixXd node_psi(double x, int end) const;
+  /// The same in a node's coordinates (those of its conditions' B, if any).
+  Eigen::MatrixXd node_psi(double x, const LineAnalysis::ClassLine::End* e) const;
+  /// The rigid amplitudes' mass r x r (class units: int Phi^T M Phi dx and the point masses).
+  Eigen::MatrixXd mass() const;
   bool is_anchor(int end, int coord) const {
     for (const auto& a : anchors)
       if (a.end == end && a.coord == coord) return true;
@@ -112,15 +176,15 @@ struct RigidCondensed {
 /// Throws std::runtime_error if E is not positive definite.
 RigidCondensed condense_rigid(const RigidLine& rl, BlockTridiagonal& K, const std::vector<double>& x);
 
-/// Field values (physical) at every node from a class solution d (nodes x mc, end nodes in B coordinates).
+/// Field values (physical) at every node from a class solution d (nodes x mc, nodes with conditions in their B coordinates).
 template <class Vec>
-std::vector<Vec> to_fields(const LineAnalysis::ClassLine& c, const Vec& d, int nn) {
+std::vector<Vec> to_fields(const LineAnalysis::ClassLine& c, const Vec& d, const std::vector<double>& x) {
+  const int nn = static_cast<int>(x.size());
   using Scalar = typename Vec::Scalar;
   std::vector<Vec> q(nn);
   for (int i = 0; i < nn; ++i) {
     Vec dc = d.segment(static_cast<Eigen::Index>(i) * c.mc, c.mc);
-    if (i == 0) dc = c.ends[0].B.template cast<Scalar>() * dc;
-    if (i == nn - 1) dc = c.ends[1].B.template cast<Scalar>() * dc;
+    if (const auto* e = c.condition_at(x, static_cast<std::size_t>(i))) dc = e->B.template cast<Scalar>() * dc;
     q[i] = c.W.template cast<Scalar>() * dc;
   }
   return q;

@@ -47,10 +47,11 @@ LineAnalysis::Mesh LineAnalysis::mesh_for(ClassLine& c, double lambda_max, const
   const double L = model_.length;
   if (c.re0 < 0) {
     c.re0 = c.im0 = 0;
-    wavenumber_bounds(c.state(0.0), c.re0, c.im0);
+    for (int k = 0; k < c.pieces(); ++k) wavenumber_bounds(c.state(0.0, k), c.re0, c.im0);
   }
   double re = c.re0, im = c.im0;
-  if (lambda_max > 0) wavenumber_bounds(c.state(lambda_max), re, im);
+  if (lambda_max > 0)
+    for (int k = 0; k < c.pieces(); ++k) wavenumber_bounds(c.state(lambda_max, k), re, im);
   Mesh mesh;
   mesh.h_im = im > 0 ? ctl_.im_h / im : L;
   mesh.h_re = re > 0 ? ctl_.re_h / re : L;
@@ -58,6 +59,7 @@ LineAnalysis::Mesh LineAnalysis::mesh_for(ClassLine& c, double lambda_max, const
   if (!(mesh.h_base > 0) || !std::isfinite(mesh.h_base)) throw std::runtime_error("dtfm: wavenumber bound is not finite");
   std::vector<double> breaks = {0.0, L};
   for (double x : required) breaks.push_back(std::clamp(x, 0.0, L));
+  for (double x : c.required_nodes()) breaks.push_back(x);  // steps, supports, masses
   for (int i = 1; i < min_nodes; ++i) breaks.push_back(L * i / min_nodes);
   std::sort(breaks.begin(), breaks.end());
   std::vector<double> b2;

@@ -45,7 +45,7 @@ double LineAnalysis::family_share(ClassLine& c, double lambda) {
     }
   }
   if (d.size() == 0) return std::numeric_limits<double>::quiet_NaN();
-  const auto q = to_fields(c, d, nn);
+  const auto q = to_fields(c, d, mesh.x);
   const Eigen::MatrixXd& T = c.family_motions;
   const Eigen::MatrixXd TM = T.transpose() * model_.M;
   const Eigen::MatrixXd H = TM * T;
@@ -111,19 +111,13 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   } catch (const std::runtime_error& e) {
     return fail(e.what());
   }
-  // The rigid amplitudes' mass (class units: the kinetic energy is int d^T M d dx).
+  // The rigid amplitudes' mass (class units: the kinetic energy is int d^T M d dx and the point
+  // masses'), over the free amplitudes.
+  const Eigen::MatrixXd Mall = rl->mass();
   Eigen::MatrixXd Mr(rf, rf);
   for (Eigen::Index p = 0; p < rf; ++p)
-    for (Eigen::Index q = 0; q <= p; ++q) {
-      const int ap = rl->free_a[static_cast<std::size_t>(p)], aq = rl->free_a[static_cast<std::size_t>(q)];
-      const Integral in = integrate(
-          [&](double x) {
-            const Eigen::MatrixXd P = rl->phi(x);
-            return P.col(ap).dot(rl->line.M * P.col(aq));
-          },
-          0.0, model_.length, 1e-13);
-      Mr(p, q) = Mr(q, p) = in.value;
-    }
+    for (Eigen::Index q = 0; q < rf; ++q)
+      Mr(p, q) = Mall(rl->free_a[static_cast<std::size_t>(p)], rl->free_a[static_cast<std::size_t>(q)]);
   // The mass of the static shapes Psi - E^-1 B (the rigid motions with the line's elastic response
   // to the non-anchor springs), exactly: a segment's divided difference (K(l) - K(0)) / l at a tiny
   // l is minus the consistent mass of the static fields between its nodes. With it the Ritz values
@@ -138,7 +132,6 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
     for (int i = 0; i + 1 < nn; ++i) short_segments = short_segments && x[i + 1] - x[i] <= mesh0.h_base * (1 + 1e-9);
     if (short_segments) {
       const double ls = 1e-12 * model_.lambda_scale;
-      const Eigen::MatrixXd A1 = rl->line.state(ls), A0 = rl->line.state(0.0);
       Eigen::MatrixXd P(static_cast<Eigen::Index>(nn) * mc, rf);
       for (int i = 0; i < nn; ++i)
         for (Eigen::Index q = 0; q < rf; ++q)
@@ -147,16 +140,25 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
       const Eigen::MatrixXd V = P - cd.Y;
       Eigen::MatrixXd mg = Eigen::MatrixXd::Zero(rf, rf), mr = Eigen::MatrixXd::Zero(rf, rf);
       for (int i = 0; i + 1 < nn; ++i) {
+        const int piece = rl->line.piece_of(x[i], x[i + 1]);
+        const Eigen::MatrixXd A1 = rl->line.state(ls, piece), A0 = rl->line.state(0.0, piece);
         Eigen::MatrixXd dK = segment_dynamic_stiffness_divided(A1, A0, ls, x[i + 1] - x[i]).dK;
         Eigen::MatrixXd T = Eigen::MatrixXd::Identity(2 * mc, 2 * mc);
-        if (i == 0) T.topLeftCorner(mc, mc) = rl->line.ends[0].B;
-        if (i + 2 == nn) T.bottomRightCorner(mc, mc) = rl->line.ends[1].B;
+        if (const auto* e = rl->line.condition_at(x, static_cast<std::size_t>(i))) T.topLeftCorner(mc, mc) = e->B;
+        if (const auto* e = rl->line.condition_at(x, static_cast<std::size_t>(i) + 1)) T.bottomRightCorner(mc, mc) = e->B;
         dK = (T.transpose() * dK * T).eval();
         const Eigen::MatrixXd Vs = V.middleRows(static_cast<Eigen::Index>(i) * mc, 2 * mc);
         const Eigen::MatrixXd Ps = P.middleRows(static_cast<Eigen::Index>(i) * mc, 2 * mc);
         mg -= Vs.transpose() * dK * Vs;
         mr -= Ps.transpose() * dK * Ps;
       }
+      for (int i = 0; i < nn; ++i)  // the point masses: K's term -lambda mass at their nodes
+        if (const auto* e = rl->line.condition_at(x, static_cast<std::size_t>(i)); e && e->mass_scaled.size() > 0) {
+          const Eigen::MatrixXd Vn = V.middleRows(static_cast<Eigen::Index>(i) * mc, e->n_free);
+          const Eigen::MatrixXd Pn = P.middleRows(static_cast<Eigen::Index>(i) * mc, e->n_free);
+          mg += Vn.transpose() * e->mass_scaled * Vn;
+          mr += Pn.transpose() * e->mass_scaled * Pn;
+        }
       if (mg.allFinite() && (mr - Mr).norm() <= 1e-9 * Mr.norm()) Mg = 0.5 * (mg + mg.transpose());
     }
   }
@@ -190,8 +192,7 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   auto anchored_pd = [&](double t) {
     const Mesh mt = mesh_for(c0, t, {});
     Assembled at = assemble(rl->line, t, mt);
-    const int nn = static_cast<int>(mt.x.size());
-    for (const auto& an : rl->anchors) at.K.hold(an.end == 0 ? 0 : nn - 1, an.coord);
+    for (const auto& an : rl->anchors) at.K.hold(rl->node_of(an.end, mt.x), an.coord);
     const auto in = at.K.inertia();
     return in.negative == 0 && in.zero == 0 && at.info.clamped_below == 0;
   };
@@ -360,7 +361,12 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     const double a = model_.length, D_over_mass = scale * std::pow(std::max(a, b) / std::numbers::pi, 4);
     if (b > 0) expected = 4.0 * std::pow(4.0 * std::numbers::pi * k / (a * b), 2) * D_over_mass;
   }
-  double lo = delta, hi = std::isfinite(expected) ? std::max(scale, expected) : scale;
+  // Off the grid of dyadic multiples of the scale: the bracket's top and the bands below it (a factor
+  // kBand apart) would otherwise fall on the eigenvalues of symmetric structures (a beam pinned at
+  // its middle: mode 1 at exactly 16 times the scale), where the two bands' counts disagree by
+  // rounding.
+  const double off_grid = 1.0 + 1.0 / (10.0 * std::numbers::sqrt2);
+  double lo = delta, hi = (std::isfinite(expected) ? std::max(scale, expected) : scale) * off_grid;
   int n_hi = rigid;
   if (rigid < k) {
     refresh(hi);

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 #include "analysis_detail.hpp"
 #include "modalbench/numerics/balancing.hpp"
@@ -49,39 +52,73 @@ std::vector<Attached> attach(const std::vector<double>& points, std::vector<doub
 LongSegment segment_k(const Eigen::MatrixXd& A, double h, int levels) { return long_segment_dynamic_stiffness(A, h, levels); }
 LongSegmentC segment_k(const Eigen::MatrixXcd& A, double h, int levels) { return long_segment_dynamic_stiffness(A, h, levels); }
 
-/// Class displacements (end nodes out of their B coordinates) at x[i] + t from a solution d: the
-/// state of node i on the side of t (its displacement and the adjacent segment's end force)
-/// carried by exp(A t).
+/// A distributed load on one segment of a class line: y' = A y + g0 + g1 s (s from the segment's
+/// left node), g = [0; -p(x)], p the class's load per unit length (linear within the segment).
+struct SegmentLoad {
+  Eigen::VectorXd g0, g1;
+};
+
+/// y_p(t) with y_p' = A y_p + g0 + g1 s, y_p(0) = 0: the last column of the exponential of the
+/// augmented matrix [[A, g1, g0], [0, 0, 1], [0, 0, 0]] t (t of either sign).
+Eigen::VectorXd particular(const Eigen::MatrixXd& A, const SegmentLoad& ld, double t) {
+  const Eigen::Index n = A.rows();
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n + 2, n + 2);
+  E.topLeftCorner(n, n) = A;
+  E.block(0, n, n, 1) = ld.g1;
+  E.block(0, n + 1, n, 1) = ld.g0;
+  E(n, n + 1) = 1.0;
+  E *= t;
+  const Eigen::VectorXd sc = balance_in_place(E, 20);
+  const Eigen::MatrixXd X = sc.asDiagonal() * Eigen::MatrixXd(E.exp()) * sc.cwiseInverse().asDiagonal();
+  return X.col(n + 1).head(n);
+}
+
+/// Class displacements (nodes with conditions out of their B coordinates) at x[i] + t from a
+/// solution d: the state of node i on the side of t (its displacement and the adjacent segment's
+/// end force) carried by exp(A t), with the segment's distributed load (`loads`, per segment,
+/// empty: none) as its particular solution.
 template <class Scalar>
 Eigen::Matrix<Scalar, Eigen::Dynamic, 1> near_node(const LineAnalysis::ClassLine& c, Scalar lambda,
                                                    const std::vector<double>& x, double h_base,
-                                                   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& d, int i, double t) {
+                                                   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& d, int i, double t,
+                                                   const std::vector<std::optional<SegmentLoad>>& loads = {}) {
   using Mat = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using Vec = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   const int nn = static_cast<int>(x.size()), mc = c.mc;
   auto node_d = [&](int k) {
     Vec v = d.segment(static_cast<Eigen::Index>(k) * mc, mc);
-    if (k == 0) v = c.ends[0].B.template cast<Scalar>() * v;
-    if (k == nn - 1) v = c.ends[1].B.template cast<Scalar>() * v;
+    if (const auto* e = c.condition_at(x, static_cast<std::size_t>(k))) v = e->B.template cast<Scalar>() * v;
     return v;
   };
   if (t == 0.0) return node_d(i);
   const bool right = t > 0;
   const int a = right ? i : i - 1;
   if (a < 0 || a + 1 >= nn) return node_d(i);  // cannot happen: points lie in [0, L]
-  const Mat A = c.state(lambda);
+  const Mat A = c.state(lambda, c.piece_of(x[static_cast<std::size_t>(a)], x[static_cast<std::size_t>(a) + 1]));
   const double h = x[static_cast<std::size_t>(a) + 1] - x[static_cast<std::size_t>(a)];
   const int levels = detail::doubling_levels(h, h_base);
   const Mat K = segment_k(A, h, levels).K;
+  const std::optional<SegmentLoad>* ld =
+      static_cast<std::size_t>(a) < loads.size() && loads[static_cast<std::size_t>(a)] ? &loads[static_cast<std::size_t>(a)] : nullptr;
+  Vec yp_h = Vec::Zero(2 * mc);  // the particular solution at the segment's right end
+  if constexpr (std::is_same_v<Scalar, double>)
+    if (ld) yp_h = particular(A, **ld, h);
   Vec dd(2 * mc), eta(2 * mc);
-  dd << node_d(a), node_d(a + 1);
-  // K [d_a; d_b] = [-F(a+); F(b-)].
+  dd << node_d(a), node_d(a + 1) - yp_h.head(mc);
+  // K [d_a; d_b - d_p(h)] = [-F(a+); F(b-) - f_p(h)].
   if (right) eta << node_d(i), -(K.topRows(mc) * dd);
-  else eta << node_d(i), K.bottomRows(mc) * dd;
+  else eta << node_d(i), K.bottomRows(mc) * dd + yp_h.tail(mc);
   Mat B = A * Scalar(t);
   const Eigen::VectorXd s = balance_in_place(B, 20);
   const Mat T = s.template cast<Scalar>().asDiagonal() * Mat(B.exp()) * s.cwiseInverse().template cast<Scalar>().asDiagonal();
-  return (T * eta).head(mc);
+  Vec y = T * eta;
+  if constexpr (std::is_same_v<Scalar, double>)
+    if (ld) {  // the particular solution from node i: from the left end, or back from the right
+      SegmentLoad from_i = **ld;
+      if (!right) from_i.g0 += from_i.g1 * h;
+      y += particular(A, from_i, t);
+    }
+  return y.head(mc);
 }
 
 /// K(0) d = f split into rigid amplitudes and the anchored elastic part (detail::RigidLine,
@@ -122,15 +159,81 @@ void solve_split(const detail::RigidLine& rl, BlockTridiagonal& K, const std::ve
 
 }  // namespace
 
+namespace {
+
+/// The generalized forces per unit length of the distributed loads at x (physical fields), on the
+/// side of x towards `inside` (a load's ends along x are nodes: within a segment each is linear).
+/// Beams: the line loads' section resultants; plates: the pressures' strip-line shares.
+Eigen::VectorXd density(const PrismModel& model, const std::vector<DistributedLoad>& loads, double x, double inside) {
+  const double tol = 1e-12 * model.length;
+  PointLoad q;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(model.m);
+  for (const DistributedLoad& d : loads) {
+    const double lo = d.from[0], hi = d.to[0];
+    const bool covers = inside >= x ? (x >= lo - tol && x < hi - tol) : (x > lo + tol && x <= hi + tol);
+    if (!covers) continue;
+    if (model.kind == SceneKind::Plate) {
+      f += model.pressure_vector(d);
+      continue;
+    }
+    q.Fx += d.at(d.qx, x);
+    q.Fy += d.at(d.qy, x);
+    q.Fz += d.at(d.qz, x);
+  }
+  if (model.kind != SceneKind::Plate) f = model.load_vector(q);
+  return f;
+}
+
+/// Each segment's distributed load in class c (none where it carries none), and its equivalent
+/// nodal forces added to f: the forces of the segment held at both nodes under the load, from
+/// the particular solution y_p and the segment's dynamic stiffness at lambda = 0.
+std::vector<std::optional<SegmentLoad>> segment_loads(const LineAnalysis::ClassLine& c, const std::vector<double>& x,
+                                                      const std::vector<DistributedLoad>& distributed,
+                                                      const PrismModel& model, Eigen::VectorXd& f) {
+  const int nn = static_cast<int>(x.size()), mc = c.mc;
+  std::vector<std::optional<SegmentLoad>> out(static_cast<std::size_t>(nn > 0 ? nn - 1 : 0));
+  auto g_at = [&](double xx, double inside) {
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * mc);
+    g.tail(mc) = -(c.W.transpose() * density(model, distributed, xx, inside) / c.sigma);
+    return g;
+  };
+  for (int i = 0; i + 1 < nn; ++i) {
+    const double xa = x[static_cast<std::size_t>(i)], xb = x[static_cast<std::size_t>(i) + 1], h = xb - xa;
+    const Eigen::VectorXd ga = g_at(xa, xb), gb = g_at(xb, xa);
+    if (ga.norm() == 0.0 && gb.norm() == 0.0) continue;
+    SegmentLoad ld{ga, (gb - ga) / h};
+    const Eigen::MatrixXd A = c.state(0.0, c.piece_of(xa, xb));
+    const Eigen::VectorXd yp = particular(A, ld, h);
+    const Eigen::MatrixXd K = segment_k(A, h, 0).K;
+    // Held at both nodes: the homogeneous part takes d(h) = -d_p(h), so F(a+) = K_ab d_p(h) and
+    // F(b-) = f_p(h) - K_bb d_p(h); the nodes carry [F(a+); -F(b-)].
+    Eigen::VectorXd fa = K.topRightCorner(mc, mc) * yp.head(mc);
+    Eigen::VectorXd fb = -(yp.tail(mc) - K.bottomRightCorner(mc, mc) * yp.head(mc));
+    if (const auto* e = c.condition_at(x, static_cast<std::size_t>(i))) fa = e->B.transpose() * fa;
+    if (const auto* e = c.condition_at(x, static_cast<std::size_t>(i) + 1)) fb = e->B.transpose() * fb;
+    f.segment(static_cast<Eigen::Index>(i) * mc, mc) += fa;
+    f.segment(static_cast<Eigen::Index>(i + 1) * mc, mc) += fb;
+    out[static_cast<std::size_t>(i)] = ld;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& loads,
-                                              const std::vector<std::array<double, 2>>& probes) {
+                                              const std::vector<std::array<double, 2>>& probes,
+                                              const std::vector<DistributedLoad>& distributed,
+                                              std::vector<PointReaction>* reactions) {
   std::vector<double> required;
   for (const auto& p : loads) required.push_back(std::clamp(p.x, 0.0, model_.length));
+  for (const auto& d : distributed)
+    for (double x : {d.from[0], d.to[0]}) required.push_back(std::clamp(x, 0.0, model_.length));
   std::vector<double> probe_x;
   for (const auto& p : probes) probe_x.push_back(p[0]);
   const std::vector<Attached> at = attach(probe_x, required, model_.length, 1e-4 * model_.length);
   const int m = model_.m;
   std::vector<Eigen::VectorXd> qp(probes.size(), Eigen::VectorXd::Zero(m));
+  std::map<double, Eigen::VectorXd> react;  // per support node: its action on the fields
   // Each class's share of the loads (physical units): a class is unloaded when its share is
   // rounding of the total (a moment at an end leaks 1e-17 of itself into other classes), not
   // when it is exactly 0.
@@ -138,6 +241,11 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
   double total_share = 0;
   for (std::size_t ci = 0; ci < lines_.size(); ++ci) {
     for (const auto& p : loads) share[ci] += (lines_[ci]->W.transpose() * model_.load_vector(p)).squaredNorm();
+    for (const auto& d : distributed)
+      for (double x : {d.from[0], d.to[0]}) {
+        const double L = model_.length;
+        share[ci] += (lines_[ci]->W.transpose() * density(model_, {d}, x, x == d.from[0] ? L : 0.0)).squaredNorm() * L * L;
+      }
     total_share += share[ci];
   }
   for (const auto& line : lines_) {
@@ -163,7 +271,10 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
             rigid, to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
     }
     const ClassLine& c = rl ? rl->line : c0;
-    const Mesh mesh = mesh_for(c0, 0.0, required);
+    Mesh mesh = mesh_for(c0, 0.0, required);
+    // Distributed loads: segments no longer than a base piece (the particular solution's exponential).
+    if (!distributed.empty() && mesh.h_base < model_.length)
+      mesh = mesh_for(c0, 0.0, required, static_cast<int>(std::ceil(model_.length / mesh.h_base)));
     const auto& x = mesh.x;
     const int nn = static_cast<int>(x.size());
     auto node = [&](double xx) {
@@ -175,10 +286,11 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
     for (const auto& p : loads) {
       const int i = node(std::clamp(p.x, 0.0, model_.length));
       Eigen::VectorXd fc = c.W.transpose() * model_.load_vector(p) / c.sigma;
-      if (i == 0) fc = c.ends[0].B.transpose() * fc;
-      if (i == nn - 1) fc = c.ends[1].B.transpose() * fc;
+      if (const auto* e = c.condition_at(x, static_cast<std::size_t>(i))) fc = e->B.transpose() * fc;
       f.segment(static_cast<Eigen::Index>(i) * c.mc, c.mc) += fc;
     }
+    std::vector<std::optional<SegmentLoad>> seg_loads;
+    if (!distributed.empty()) seg_loads = segment_loads(c, x, distributed, model_, f);
     Assembled a = assemble(c, 0.0, mesh);
     Eigen::VectorXd d, amp;  // d: nodal values (the elastic part when split), amp: rigid amplitudes
     if (rl) {
@@ -196,9 +308,20 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
     for (std::size_t j = 0; j < probes.size(); ++j) {
       // The elastic field from its nodal values (its section forces are those of the whole
       // solution: K(0) times a rigid motion is zero), the rigid motions exactly.
-      Eigen::VectorXd dc = near_node<double>(c, 0.0, x, mesh.h_base, d, node(at[j].anchor), at[j].t);
+      Eigen::VectorXd dc = near_node<double>(c, 0.0, x, mesh.h_base, d, node(at[j].anchor), at[j].t, seg_loads);
       if (rl) dc += rl->phi(std::clamp(probes[j][0], 0.0, model_.length)) * amp;
       qp[j] += c.W * dc;
+    }
+    if (reactions && model_.kind == SceneKind::Beam) add_reactions(c, mesh, rl ? &*rl : nullptr, d, amp, f, react);
+  }
+  if (reactions) {
+    reactions->clear();
+    for (const auto& [xr, fields] : react) {
+      PointReaction pr;
+      pr.x = xr;
+      const Eigen::VectorXd F = model_.rigid_motions.transpose() * fields;
+      for (int k = 0; k < 6; ++k) pr.F[static_cast<std::size_t>(k)] = F[k];
+      reactions->push_back(pr);
     }
   }
   std::vector<Deflection> out;
@@ -208,6 +331,34 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
     out.push_back(d);
   }
   return out;
+}
+
+void LineAnalysis::add_reactions(const ClassLine& c, const Mesh& mesh, const detail::RigidLine* rl, const Eigen::VectorXd& d,
+                                 const Eigen::VectorXd& amp, const Eigen::VectorXd& f,
+                                 std::map<double, Eigen::VectorXd>& react) {
+  const auto& x = mesh.x;
+  const int nn = static_cast<int>(x.size()), mc = c.mc;
+  // The whole nodal solution: the elastic part and the rigid motions.
+  Eigen::VectorXd full = d;
+  if (rl)
+    for (int i = 0; i < nn; ++i)
+      full.segment(static_cast<Eigen::Index>(i) * mc, mc) +=
+          rl->node_psi(x[static_cast<std::size_t>(i)], c.condition_at(x, static_cast<std::size_t>(i))) * amp;
+  // K without the rigid split's anchors; its held rows are the beam's own: K d - f there is what
+  // the support adds, and a spring adds -k d.
+  const Eigen::VectorXd Kd = assemble(c, 0.0, mesh).K.multiply(full);
+  for (int i = 0; i < nn; ++i) {
+    const auto* ce = c.condition_at(x, static_cast<std::size_t>(i));
+    if (!ce) continue;
+    const Eigen::Index o = static_cast<Eigen::Index>(i) * mc;
+    Eigen::VectorXd rB = Eigen::VectorXd::Zero(mc);
+    for (int j = ce->n_free; j < mc; ++j) rB[j] = Kd[o + j] - f[o + j];
+    if (ce->n_free > 0 && ce->K.size() > 0) rB.head(ce->n_free) = -(ce->K * full.segment(o, ce->n_free));
+    const Eigen::VectorXd fields = c.sigma * c.Winv.transpose() * (ce->B * rB);
+    auto it = react.find(ce->x);
+    if (it == react.end()) react.emplace(ce->x, fields);
+    else it->second += fields;
+  }
 }
 
 std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2> excite, std::array<double, 2> observe,
@@ -244,8 +395,7 @@ std::vector<std::complex<double>> LineAnalysis::receptance(std::array<double, 2>
     const int ie = node(std::clamp(excite[0], 0.0, model_.length));
     const int io = node(ob.anchor);
     Eigen::VectorXd fc = fc0;
-    if (ie == 0) fc = c.ends[0].B.transpose() * fc;
-    if (ie == nn - 1) fc = c.ends[1].B.transpose() * fc;
+    if (const auto* e = c.condition_at(x, static_cast<std::size_t>(ie))) fc = e->B.transpose() * fc;
     // The observation point: a node, or reached from the node within 1e-4 L of it (near_node).
     auto observe_at = [&](const auto& d, auto lambda) {
       using Scalar = decltype(lambda);

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "analysis_detail.hpp"
+#include "modalbench/numerics/quadrature.hpp"
 
 namespace modalbench::dtfm::detail {
 
@@ -41,9 +42,39 @@ Eigen::MatrixXd RigidLine::phi(double x) const {
   return Eigen::MatrixXd(X.exp()) * V0 * Rc;
 }
 
-Eigen::MatrixXd RigidLine::node_psi(double x, int end) const {
+Eigen::MatrixXd RigidLine::node_psi(double x, const LineAnalysis::ClassLine::End* e) const {
   const Eigen::MatrixXd p = phi(x);
-  return end < 0 ? p : Eigen::MatrixXd(line.ends[end].B.transpose() * p);
+  return e ? Eigen::MatrixXd(e->B.transpose() * p) : p;
+}
+
+Eigen::MatrixXd RigidLine::mass() const {
+  const Eigen::Index r = V0.cols();
+  Eigen::MatrixXd Mr = Eigen::MatrixXd::Zero(r, r);
+  double from = 0;
+  for (int k = 0; k < line.pieces(); ++k) {
+    const double to = k + 1 < line.pieces() ? line.steps[static_cast<std::size_t>(k)].x_to : line.length;
+    const double top = k == 0 ? line.first_to : to;
+    const Eigen::MatrixXd& M = line.M_of(k);
+    for (Eigen::Index p = 0; p < r; ++p)
+      for (Eigen::Index q = 0; q <= p; ++q) {
+        const Integral in = integrate(
+            [&](double x) {
+              const Eigen::MatrixXd P = phi(x);
+              return P.col(p).dot(M * P.col(q));
+            },
+            from, top, 1e-13);
+        Mr(p, q) += in.value;
+        if (q != p) Mr(q, p) += in.value;
+      }
+    from = top;
+  }
+  for (int k = 0; k < conditions(); ++k) {
+    const auto& e = cond(k);
+    if (e.mass_scaled.size() == 0) continue;
+    const Eigen::MatrixXd ps = node_psi(e.x, &e).topRows(e.n_free);
+    Mr += ps.transpose() * e.mass_scaled * ps;
+  }
+  return Mr;
 }
 
 std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double length) {
@@ -64,18 +95,32 @@ std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double len
   // Rigid line motions d(x) = exp(-St x) V0 with zero section forces solve the static field
   // equations exactly when Qt annihilates them along the whole line (no layer deforms and nothing
   // ties the line to the ground); checked at both ends, else no split.
-  const double qscale = c.Qt.norm();
-  for (double x : {0.0, length}) {
-    const Eigen::MatrixXd p = R.phi(x);
-    if ((c.Qt * p).norm() > 1e-12 * qscale * p.norm()) return std::nullopt;
+  // Every piece of a stepped line must carry them alike (the same kinematics St).
+  for (int k = 1; k < c.pieces(); ++k)
+    if ((c.St_of(k) - c.St).norm() > 1e-14 * std::max(1.0, c.St.norm())) return std::nullopt;
+  for (int k = 0; k < c.pieces(); ++k) {
+    const double qscale = c.Qt_of(k).norm();
+    for (double x : {0.0, length}) {
+      const Eigen::MatrixXd p = R.phi(x);
+      if ((c.Qt_of(k) * p).norm() > 1e-12 * qscale * p.norm()) return std::nullopt;
+    }
   }
   // A spring is none when it is exactly zero in the class (analysis_classes.cpp removes the
   // rounding of the class projection), or, on an end whose springs had to be diagonalized, below
   // the rounding of that eigen-decomposition.
   double k_zero = 0;
-  for (auto& e : R.line.ends)
-    if (diagonalize_springs(e)) k_zero = std::max(k_zero, 64.0 * kEps * e.K.norm());
-  for (const auto& e : R.line.ends) {
+  for (int k = 0; k < R.conditions(); ++k) {
+    auto& e = R.cond(k);
+    const Eigen::MatrixXd B0 = e.B;
+    if (!diagonalize_springs(e)) continue;
+    k_zero = std::max(k_zero, 64.0 * kEps * e.K.norm());
+    if (e.mass_scaled.size() > 0) {  // the masses turn with the coordinates
+      const Eigen::MatrixXd T = B0.leftCols(e.n_free).transpose() * e.B.leftCols(e.n_free);
+      e.mass_scaled = (T.transpose() * e.mass_scaled * T).eval();
+    }
+  }
+  for (int k = 0; k < R.conditions(); ++k) {
+    const auto& e = R.cond(k);
     const Eigen::MatrixXd off = e.K - Eigen::MatrixXd(e.K.diagonal().asDiagonal());
     if (e.n_free > 0 && off.cwiseAbs().maxCoeff() != 0.0) return std::nullopt;
   }
@@ -87,9 +132,9 @@ std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double len
     Eigen::RowVectorXd row;
   };
   std::vector<Candidate> cand;
-  for (int e = 0; e < 2; ++e) {
-    const Eigen::MatrixXd psi = R.node_psi(e == 0 ? 0.0 : length, e);
-    const auto& end = R.line.ends[e];
+  for (int e = 0; e < R.conditions(); ++e) {
+    const auto& end = R.cond(e);
+    const Eigen::MatrixXd psi = R.node_psi(end.x, &end);
     for (int j = 0; j < mc; ++j) {
       double k = j < end.n_free ? end.K(j, j) : kInf;
       if (k <= k_zero) k = 0.0;
@@ -121,9 +166,9 @@ std::optional<RigidLine> rigid_line(const LineAnalysis::ClassLine& c, double len
   for (int a = 0; a < r; ++a) {
     if (std::isinf(R.anchors[static_cast<std::size_t>(a)].k)) continue;
     bool touched = false;
-    for (int e = 0; e < 2 && !touched; ++e) {
-      const Eigen::MatrixXd psi = R.node_psi(e == 0 ? 0.0 : length, e);
-      const auto& end = R.line.ends[e];
+    for (int e = 0; e < R.conditions() && !touched; ++e) {
+      const auto& end = R.cond(e);
+      const Eigen::MatrixXd psi = R.node_psi(end.x, &end);
       for (int j = 0; j < end.n_free && !touched; ++j)
         touched = end.K(j, j) > k_zero && std::abs(psi(j, a)) > 1e-12 * row_scale * R.Rc.norm();
     }
@@ -140,13 +185,14 @@ RigidCondensed condense_rigid(const RigidLine& rl, BlockTridiagonal& K, const st
   const Eigen::Index r = rl.V0.cols();
   RigidCondensed out;
   for (int i = 0; i < nn; ++i)
-    out.psi.push_back(rl.node_psi(x[static_cast<std::size_t>(i)], i == 0 ? 0 : (i == nn - 1 ? 1 : -1)));
-  for (const auto& an : rl.anchors) K.hold(an.end == 0 ? 0 : nn - 1, an.coord);
+    out.psi.push_back(rl.node_psi(x[static_cast<std::size_t>(i)], c.condition_at(x, static_cast<std::size_t>(i))));
+  for (const auto& an : rl.anchors) K.hold(rl.node_of(an.end, x), an.coord);
   out.B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nn) * mc, r);
   out.C = Eigen::MatrixXd::Zero(r, r);
-  for (int end = 0; end < 2; ++end) {
-    const int nd = end == 0 ? 0 : nn - 1;
-    const auto& ce = c.ends[end];
+  for (int end = 0; end < rl.conditions(); ++end) {
+    const int nd = rl.node_of(end, x);
+    if (nd < 0) throw std::logic_error("dtfm: a support or mass is not a node of the mesh");
+    const auto& ce = rl.cond(end);
     for (int j = 0; j < ce.n_free; ++j) {
       const double k = ce.K(j, j);
       if (!(k > rl.k_zero)) continue;

@@ -9,26 +9,57 @@
 #include <string>
 
 #include "modalbench/dtfm/dtfm.hpp"
+#include "modalbench/equilibrium.hpp"
 #include "modalbench/timer.hpp"
 
 namespace modalbench::dtfm {
 
+namespace {
+
+/// The supports' actions as the result's reactions (named by the scene's supports; a node that only
+/// carries a mass has none) and, from them, the resultants at the probes by the equilibrium of the
+/// free body left of each (those of the scene's physics; the others stay 0).
+void add_reactions_and_forces(const Scene& s, const std::vector<PointReaction>& pr, Result& r) {
+  const double L = s.geometry.length;
+  for (const PointReaction& p : pr) {
+    std::string name;
+    if (std::abs(p.x) <= 1e-12 * L && !s.x0.is_free()) name = "x0";
+    if (std::abs(p.x - L) <= 1e-12 * L && !s.xL.is_free()) name = "xL";
+    for (std::size_t i = 0; i < s.point_supports.size(); ++i)
+      if (std::abs(s.point_supports[i].x - p.x) <= 1e-12 * L) name = fmt::format("points[{}]", i);
+    if (name.empty()) continue;
+    Reaction re;
+    re.support = name;
+    re.position = {p.x, 0.0};
+    re.force = {p.F[0], p.F[1], p.F[2]};
+    re.moment = {p.F[3], p.F[4], p.F[5]};
+    r.reactions.push_back(re);
+  }
+  const bool planar = s.physics != Physics::Bending, spatial = s.physics == Physics::Spatial;
+  for (Deflection& d : r.deflections) {
+    const InternalForces f = free_body_forces(s, r.reactions, d.position[0]);
+    d.forces = {};
+    d.forces.My = f.My;
+    d.forces.Qz = f.Qz;
+    if (planar) d.forces.N = f.N;
+    if (spatial) {
+      d.forces.Mz = f.Mz;
+      d.forces.Qy = f.Qy;
+      d.forces.T = f.T;
+    }
+    d.has_forces = true;
+  }
+}
+
+}  // namespace
+
 Capability DtfmSolver::supports(const Scene& s) const {
   Capability c;
-  if (s.is_stepped()) {
-    c.reason = "dtfm does not yet model stepped beams ([[segments]]: its prisms run end to end with one section)";
-    return c;
-  }
-  if (!s.point_supports.empty() || !s.masses.empty()) {
-    c.reason = "dtfm does not yet model supports at points or point masses (its prisms run from end to end, or edge to "
-               "edge)";
+  if (s.is_plate() && (!s.point_supports.empty() || !s.masses.empty())) {
+    c.reason = "dtfm does not yet model supports or masses at points of a plate (its strips run from edge to edge)";
     return c;
   }
   c.modes = c.statics = c.frf = true;
-  if (!s.line_loads.empty() || !s.pressures.empty() || s.gravity) {
-    c.statics = false;
-    c.reason = "dtfm does not yet model distributed loads or gravity (point loads only)";
-  }
   return c;
 }
 
@@ -107,7 +138,8 @@ ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& 
 std::vector<Discretization> DtfmSolver::mesh_ladder(const Scene& scene) const {
   std::vector<const char*> specs;
   if (scene.is_plate()) specs = {"4", "7", "10", "20", "40"};
-  else if (scene.cross_section.shape != SectionShape::Rectangle) specs = {"1x1"};  // only rectangles are cut
+  else if (scene.cross_section.shape != SectionShape::Rectangle || scene.is_stepped())
+    specs = {"1x1"};  // only uniform rectangles are cut
   else if (scene.physics == Physics::Spatial) specs = {"1x1", "2x2", "4x4", "6x6"};  // 6 fields per prism
   else specs = {"1x1", "2x2", "4x4", "8x8"};
   std::vector<Discretization> out;
@@ -144,6 +176,11 @@ ModeShapes DtfmSolver::shapes(const Scene& scene, LineAnalysis& la, const ModeLi
   ModeShapes ms = la.mode_shapes(ml, scene.shape_points(), scene.shape_components(), directions);
   const auto& g = scene.geometry;
   ms.total_mass = scene.material.rho * g.length * g.width * g.height;
+  if (beam) {
+    ms.total_mass = 0;
+    for (const Segment& p : scene.beam_pieces()) ms.total_mass += p.material.rho * p.properties().A * p.length();
+    for (const PointMass& pm : scene.masses) ms.total_mass += pm.mass;
+  }
   ms.note = std::string("dtfm: null vector of each mode's symmetry-class dynamic stiffness K(omega^2) (rigid modes: "
                         "its null space at omega = 0; repeated roots: mass-orthonormalized), the exact prism fields "
                         "between nodes by the transfer matrix, modal mass and participation by GSL quadrature of "
@@ -247,7 +284,10 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
       if (const std::vector<std::string> free = free_plate_rigid_motions(scene); !free.empty())
         throw std::runtime_error(fmt::format("mechanism: the supports leave {} rigid-body motion(s) free ({})",
                                              free.size(), fmt::join(free, "; ")));
-      r.deflections = la.statics(scene.loads, scene.request.probes);
+      std::vector<PointReaction> pr;
+      r.deflections =
+          la.statics(scene.all_point_loads(), scene.request.probes, scene.all_distributed_loads(), scene.is_beam() ? &pr : nullptr);
+      if (scene.is_beam()) add_reactions_and_forces(scene, pr, r);
     } catch (const std::runtime_error& e) {
       r.deflections.clear();
       // Only a mechanism is the input's fault; any other failure is a numerical breakdown.

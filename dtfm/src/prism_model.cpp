@@ -72,9 +72,17 @@ void plate_bracket(const PrismModel& mdl, double y, int& j0, double& t) {
   t = std::clamp((y - mdl.prisms[j0].y) / dl, 0.0, 1.0);
 }
 
-/// H = sum over prisms of D_i^T Lambda_i D_i over all six slots (the section's rigid-motion metric).
+/// H = sum over prisms of D_i^T Lambda_i D_i over all six slots (the section's rigid-motion metric;
+/// prisms cut from a rectangle are rectangles).
 Matrix6d section_metric(const PrismModel& mdl) {
   Matrix6d H = Matrix6d::Zero();
+  if (mdl.prisms.size() == 1) {
+    // One prism is the whole section, of any shape: its own weights (A, Ip, Iy, Iz of a circle, a
+    // tube, a general section), not a rectangle's; 1 on the motions the physics lacks.
+    H.setIdentity();
+    for (int k = 0; k < mdl.m; ++k) H(mdl.field_dof[k], mdl.field_dof[k]) = mdl.section_weights(k, k);
+    return H;
+  }
   for (const auto& g : mdl.prisms) {
     const Section sec = rectangular_section(g.width, g.height);
     Vector6d w;
@@ -101,6 +109,25 @@ Eigen::VectorXd PrismModel::load_vector(const PointLoad& load) const {
   F << load.Fx, load.Fy, load.Fz, load.Mx, load.My, load.Mz;
   const Vector6d r = checked_symmetric_solve(section_metric(*this), F, "dtfm: the section metric (load distribution)");
   return section_weights * rigid_motions * r;
+}
+
+Eigen::VectorXd PrismModel::pressure_vector(const DistributedLoad& pressure) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(m);
+  if (kind != SceneKind::Plate) return f;
+  const double dl = prisms[1].y - prisms[0].y, b = prisms.back().y;
+  const double lo = std::clamp(pressure.from[1], 0.0, b), hi = std::clamp(pressure.to[1], 0.0, b);
+  // The integral of the hat of half-width dl centred at 0 from -inf to t.
+  auto F = [dl](double t) {
+    if (t <= -dl) return 0.0;
+    if (t <= 0.0) return (t + dl) * (t + dl) / (2 * dl);
+    if (t <= dl) return dl - (dl - t) * (dl - t) / (2 * dl);
+    return dl;
+  };
+  for (std::size_t j = 0; j < prisms.size(); ++j) {
+    const int k = field(static_cast<int>(j), Uz);
+    if (k >= 0) f[k] += pressure.qz[0] * (F(hi - prisms[j].y) - F(lo - prisms[j].y));
+  }
+  return f;
 }
 
 Deflection PrismModel::section_response(const Eigen::VectorXd& q, double y) const {
@@ -169,7 +196,14 @@ PrismModel build_model(const Scene& scene, const Discretization& mesh, const Mod
   if (ny > 64 || nz > 64 || fields > 800)
     bad(fmt::format("{}x{} prisms give {} fields: at most 800 (and 64 prisms per side) are supported", ny, nz,
                     fields));
-  return detail::build_beam(scene, ny, nz, options);
+  if (scene.is_stepped() && ny * nz > 1)
+    bad(fmt::format("a stepped beam ([[segments]]) is one prism per section in dtfm (1x1): its pieces' sections "
+                    "would each need their own cut (got {}x{})", ny, nz));
+  PrismModel mdl = scene.is_stepped() ? detail::build_beam(detail::piece_scene(scene, scene.segments.front()), ny, nz, options)
+                                      : detail::build_beam(scene, ny, nz, options);
+  if (scene.is_stepped()) detail::add_steps(mdl, scene, ny, nz, options);
+  detail::add_points(mdl, scene);
+  return mdl;
 }
 
 }  // namespace modalbench::dtfm

@@ -114,4 +114,12 @@ bool reflections_commute(const PrismModel& mdl);
 PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& opt);
 PrismModel build_plate(const Scene& s, int n, const ModelOptions& opt);
 
+// Steps, supports between the ends and point masses of beams (prism_points.cpp).
+/// The scene as a uniform beam of one piece's section and material, without points.
+Scene piece_scene(const Scene& s, const Segment& piece);
+/// The operators of a stepped beam's pieces after the first (mdl built from the first).
+void add_steps(PrismModel& mdl, const Scene& s, int ny, int nz, const ModelOptions& opt);
+/// The scene's supports between the ends and point masses (those at an end into the end).
+void add_points(PrismModel& mdl, const Scene& s);
+
 }  // namespace modalbench::dtfm::detail

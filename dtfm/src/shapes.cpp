@@ -86,15 +86,16 @@ std::vector<double> distinct(std::vector<double> v, double tol) {
 /// K[j]_22 + K[j]_11 joining two pieces of length h / 2^j.
 struct Gap {
   double h = 0, h_base = 0;
-  int levels = 0;
+  int levels = 0, piece = 0;  ///< piece: of a stepped line
   std::vector<Eigen::MatrixXd> K;
   std::vector<SymFactor> S;
   double min_pivot_rel = 1;  ///< of the middle blocks (a conditioning hint, as LongSegment's)
 };
 
-Gap make_gap(const Eigen::MatrixXd& A, double h, double h_base) {
+Gap make_gap(const Eigen::MatrixXd& A, double h, double h_base, int piece) {
   Gap g;
   g.h = h;
+  g.piece = piece;
   g.levels = detail::doubling_levels(h, h_base);
   g.h_base = std::ldexp(h, -g.levels);
   for (int j = 0; j <= g.levels; ++j) {
@@ -185,7 +186,8 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   const int mc = c.mc;
   const auto p = static_cast<Eigen::Index>(which.size());
   const bool rigid = lambda == 0.0;
-  const Eigen::MatrixXd A = c.state(lambda);
+  std::vector<Eigen::MatrixXd> A;  // per piece
+  for (int k = 0; k < c.pieces(); ++k) A.push_back(c.state(lambda, k));
   // Nodes at the sample positions; each gap a long segment of 2^levels base pieces. A gap whose
   // condensed middle blocks are nearly singular at lambda (a sub-piece's clamped frequency)
   // is split (as count_det does), so that the interior recovery below stays well conditioned.
@@ -196,8 +198,11 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
     double worst = 1.0;
     for (std::size_t g = 0; g + 1 < mesh.x.size(); ++g) {
       const double h = mesh.x[g + 1] - mesh.x[g];
-      if (std::any_of(gaps.begin(), gaps.end(), [&](const Gap& e) { return std::abs(h - e.h) <= 1e-9 * h; })) continue;
-      gaps.push_back(make_gap(A, h, mesh.h_base));
+      const int piece = c.piece_of(mesh.x[g], mesh.x[g + 1]);
+      if (std::any_of(gaps.begin(), gaps.end(),
+                      [&](const Gap& e) { return e.piece == piece && std::abs(h - e.h) <= 1e-9 * h; }))
+        continue;
+      gaps.push_back(make_gap(A[static_cast<std::size_t>(piece)], h, mesh.h_base, piece));
       worst = std::min(worst, gaps.back().min_pivot_rel);
     }
     if (worst >= 1e-10 || attempt >= 4) break;
@@ -244,16 +249,16 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   std::vector<const Gap*> piece;  // per fine segment: its gap (base piece length and matrix)
   for (int i = 0; i < nc; ++i) {
     Eigen::MatrixXd d = V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
-    if (i == 0) d = c.ends[0].B * d;
-    if (i == nc - 1) d = c.ends[1].B * d;
+    if (const auto* e = c.condition_at(mesh.x, static_cast<std::size_t>(i))) d = e->B * d;
     if (i == 0) {
       D.push_back(d);
       continue;
     }
     const double h = mesh.x[i] - mesh.x[i - 1];
+    const int pc = c.piece_of(mesh.x[i - 1], mesh.x[i]);
     const Gap* gap = &gaps.front();
     for (const auto& e : gaps)
-      if (std::abs(h - e.h) <= 1e-9 * h) gap = &e;
+      if (e.piece == pc && std::abs(h - e.h) <= 1e-9 * h) gap = &e;
     const std::vector<Eigen::MatrixXd> inner = interior(*gap, D.back(), d);
     const std::size_t pieces = inner.size() + 1;
     for (std::size_t k = 0; k < pieces; ++k) {
@@ -272,20 +277,35 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   }
 
   // Gram matrix int q_a^T M q_b dx and participations int q_a^T M r_d dx, segment by segment.
-  const Eigen::MatrixXd Mq = c.W.transpose() * model_.M * c.W;
-  const Eigen::MatrixXd Rc = c.W.transpose() * model_.M * translations;
-  Transfer T(A);
+  // Per piece: the class mass, the translations' forces and the transfer matrices.
+  std::vector<Eigen::MatrixXd> Mqs, Rcs;
+  std::vector<Transfer> T;
+  for (int k = 0; k < c.pieces(); ++k) {
+    const Eigen::MatrixXd& Mphys = k == 0 ? model_.M : model_.steps[static_cast<std::size_t>(k) - 1].M;
+    Mqs.push_back(c.W.transpose() * Mphys * c.W);
+    Rcs.push_back(c.W.transpose() * Mphys * translations);
+    T.emplace_back(A[static_cast<std::size_t>(k)]);
+  }
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(p, p), Gamma = Eigen::MatrixXd::Zero(p, 3);
   std::vector<int> dirs;
-  for (int dir = 0; dir < 3; ++dir)
-    if (Rc.col(dir).norm() > 1e-14 * Rc.norm()) dirs.push_back(dir);  // the class moves in dir
+  for (int dir = 0; dir < 3; ++dir) {
+    double nrm = 0, all = 0;
+    for (const auto& Rc : Rcs) {
+      nrm = std::max(nrm, Rc.col(dir).norm());
+      all = std::max(all, Rc.norm());
+    }
+    if (nrm > 1e-14 * all) dirs.push_back(dir);  // the class moves in dir
+  }
   for (int i = 0; i + 1 < nn; ++i) {
     const double h = piece[i]->h_base;
+    const auto k_piece = static_cast<std::size_t>(piece[i]->piece);
+    const Eigen::MatrixXd& Mq = Mqs[k_piece];
+    const Eigen::MatrixXd& Rc = Rcs[k_piece];
     // The field q (and M q) at the quadrature abscissae, shared by the integrands of this segment.
     std::map<double, std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> field;
     auto at = [&](double s) -> const std::pair<Eigen::MatrixXd, Eigen::MatrixXd>& {
       if (const auto it = field.find(s); it != field.end()) return it->second;
-      Eigen::MatrixXd d = T(s).topRows(mc) * Y[i];
+      Eigen::MatrixXd d = T[k_piece](s).topRows(mc) * Y[i];
       Eigen::MatrixXd md = Mq * d;
       return field.emplace(s, std::make_pair(std::move(d), std::move(md))).first->second;
     };
@@ -308,6 +328,16 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
     }
   }
 
+  // The point masses at their nodes.
+  for (int i = 0; i < nc; ++i) {
+    const auto* e = c.condition_at(mesh.x, static_cast<std::size_t>(i));
+    if (!e || e->Mc.size() == 0) continue;
+    const Eigen::MatrixXd d = e->B * V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
+    G += d.transpose() * e->Mc * d;
+    const Eigen::MatrixXd Rp = c.W.transpose() * e->Mfields * translations;
+    for (int dir : dirs) Gamma.col(dir) += d.transpose() * Rp.col(dir);
+  }
+
   // Several modes: mass-orthonormalized (G = L L^T, basis V L^-T), which keeps the first.
   Eigen::MatrixXd Cb = Eigen::MatrixXd::Identity(p, p);
   if (p > 1) {
@@ -326,7 +356,7 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
     throw std::logic_error(fmt::format("dtfm: shape sample x = {} is not a node", xx));
   };
   std::vector<std::vector<Eigen::VectorXd>> q(static_cast<std::size_t>(p));
-  for (Eigen::Index u = 0; u < p; ++u) q[u] = to_fields(c, Eigen::VectorXd(V.col(u)), nc);
+  for (Eigen::Index u = 0; u < p; ++u) q[u] = to_fields(c, Eigen::VectorXd(V.col(u)), mesh.x);
   const std::size_t np = out.points.size(), ncomp = out.components.size();
   std::vector<Eigen::MatrixXd> raw(ncomp, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p));
   for (std::size_t s = 0; s < np; ++s) {

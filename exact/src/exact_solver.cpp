@@ -329,6 +329,7 @@ ModeShapes shapes_frame(const Scene& s) {
   if (s.is_beam()) {
     out.total_mass = 0;
     for (const Segment& p : s.beam_pieces()) out.total_mass += p.material.rho * p.properties().A * p.length();
+    for (const PointMass& pm : s.masses) out.total_mass += pm.mass;  // as rfem and dtfm
   }
   out.directions = {s.is_beam() && s.physics != Physics::Bending, s.is_beam() && s.physics == Physics::Spatial, true};
   return out;

@@ -94,11 +94,14 @@ class DifferenceEqSolver final : public Solver {
   void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
                 Result& result) const override;
 
- private:
+ public:
   /// Mode shapes at the scene's sample points for the reported frequencies (the first `rigid`
-  /// of them rigid-body modes), normalized in the model's own mass matrix (shapes.cpp).
+  /// of them rigid-body modes), normalized in the model's own mass matrix with the scene's point
+  /// masses (shapes.cpp).
   static ModeShapes shapes(const Scene& s, const RegularBeam& beam, MassModel mass, const std::vector<double>& omega,
                            int rigid);
+
+ private:
 
   Config config_;
 };

@@ -1,8 +1,10 @@
 #pragma once
 // Solving a prism model along x by segment dynamic stiffness (core's numerics kernels):
 // each symmetry class of the fields is a Hamiltonian line problem. Global nodes sit only where
-// they are needed (ends, loads, probes, observation points, on a common spacing when these are
-// commensurate); each segment's dynamic stiffness is built by doubling from a base piece short
+// they are needed (ends, steps, supports and masses between the ends, loads, probes, observation
+// points, on a common spacing when these are commensurate); a node with a support or mass adds its
+// springs and -omega^2 masses to K and holds what the support holds (the count stays exact: they
+// are nodal terms); a stepped beam's segments take their own piece's state matrix; each segment's dynamic stiffness is built by doubling from a base piece short
 // enough that exp(A h) is well conditioned and has no clamped natural frequency below the
 // largest omega of interest (|p| h <= 1 for every wavenumber p of A at omega = 0 and at
 // omega_max). The segments are assembled into a block-tridiagonal K(omega^2); the
@@ -17,7 +19,9 @@
 //     discretization (other base pieces, other rounding): a mode that does not reproduce to
 //     5e-5 is reported (rounding floor of stiff layers against very slender spans or soft
 //     supports);
-//   - statics: K(0) d = f; a class with rigid motions of its own (beams) split into them and
+//   - statics: K(0) d = f, a distributed load entering as the equivalent nodal forces of its
+//     particular solution (the augmented exponential over each segment) and added back between
+//     nodes; the supports' reactions from K d - f on the held coordinates and -k d; a class with rigid motions of its own (beams) split into them and
 //     its elastic part held at anchors (detail::RigidLine), so that springs far softer than the
 //     rounding of K_int + K_springs (near-mechanisms) keep their digits and a mechanism is
 //     recognized structurally (a rigid motion no support reaches);
@@ -38,6 +42,7 @@
 #include <array>
 #include <complex>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -80,6 +85,17 @@ struct ModeList {
   double polish_floor_width = 0;
 };
 
+/// A support's action on a beam at x: the section resultant (Fx, Fy, Fz, Mx, My, Mz) it exerts,
+/// N and N*m, global axes.
+struct PointReaction {
+  double x = 0;
+  std::array<double, 6> F{};
+};
+
+namespace detail {
+struct RigidLine;
+}
+
 class LineAnalysis {
  public:
   explicit LineAnalysis(const PrismModel& model, SolveControls controls = {});
@@ -92,10 +108,15 @@ class LineAnalysis {
   ModeList modes(int k, const std::vector<ModeFamily>& families = {});
   /// Number of natural frequencies with omega^2 < lambda over the chosen classes (mesh for lambda).
   int count_below(double lambda, const std::vector<ModeFamily>& families = {});
-  /// Static response at probes (x, y) under point loads. Throws std::runtime_error starting
+  /// Static response at probes (x, y) under point loads and distributed ones. Throws std::runtime_error starting
   /// "mechanism" if a loaded class is not restrained (the input's fault), another message if the
   /// solve breaks down numerically.
-  std::vector<Deflection> statics(const std::vector<PointLoad>& loads, const std::vector<std::array<double, 2>>& probes);
+  /// `distributed`: beam line loads (linear over their ranges) or plate pressures, their particular
+  /// solutions exact along x. `reactions` (beams): what each node with a support or mass exerts on
+  /// the beam (a mass-only node: zero), ascending x.
+  std::vector<Deflection> statics(const std::vector<PointLoad>& loads, const std::vector<std::array<double, 2>>& probes,
+                                  const std::vector<DistributedLoad>& distributed = {},
+                                  std::vector<PointReaction>* reactions = nullptr);
   /// Receptance w(observe) / Fz(excite) at each omega; `eta` structural loss factor. A sample
   /// at an undamped natural frequency is not finite: it is returned as NaN and counted.
   std::vector<std::complex<double>> receptance(std::array<double, 2> excite, std::array<double, 2> observe,
@@ -183,6 +204,10 @@ class LineAnalysis {
     std::vector<std::pair<double, double>> enclosures;
   };
   NearRigid near_rigid(ClassLine& c, int below);
+  /// Adds to `react` (per node x, over the fields) the supports' actions of one class's static
+  /// solution: K d - f on the held coordinates, -k d of the springs (analysis_response.cpp).
+  void add_reactions(const ClassLine& c, const Mesh& mesh, const detail::RigidLine* rl, const Eigen::VectorXd& d,
+                     const Eigen::VectorXd& amp, const Eigen::VectorXd& f, std::map<double, Eigen::VectorXd>& react);
   /// The shapes of the modes `which` (one class, one lambda; 0: rigid) into `out` (shapes.cpp).
   void cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
                       const std::vector<double>& xs, const Eigen::MatrixXd& translations, ModeShapes& out);

@@ -87,6 +87,24 @@ struct EndCondition {
   Eigen::MatrixXd N;  ///< m x n orthonormal basis of the admissible motions
   Eigen::MatrixXd K;  ///< n x n spring stiffness on the coordinates a
   std::string text;   ///< what it is, for messages
+  /// m x m: point masses there, kinetic energy 1/2 qdot^T mass qdot over the fields (empty: none).
+  Eigen::MatrixXd mass;
+};
+
+/// A beam's support or point mass between its ends (`[[supports.points]]`, `[[masses]]`): the
+/// same form as an end's, at x. It acts on the section's resultant motion (the conjugate of the
+/// point loads' spread, PrismModel::load_vector): on one prism, the beam's own w, theta, ...; on a
+/// section cut into prisms, spread over them as a point load is (no rigid plate there).
+struct PointCondition {
+  double x = 0;
+  EndCondition cond;
+};
+
+/// A piece of a stepped beam (one prism): its operator (the energy form's matrices) over
+/// [previous piece's x_to, x_to].
+struct PieceOperator {
+  double x_to = 0;
+  Eigen::MatrixXd M, C, S, X, Q1;
 };
 
 /// A reflection of the section as a signed permutation of the fields: (Pi q)_k = sign_k q_{perm_k}.
@@ -117,6 +135,13 @@ struct PrismModel {
   // Energy form (see the file comment). C: compliance, 0 where a strain is rigid.
   Eigen::MatrixXd M, C, S, X, Q1;
   EndCondition ends[2];
+  /// Beams: supports and point masses between the ends, by ascending x (those at an end are
+  /// merged into `ends`).
+  std::vector<PointCondition> points;
+  /// Stepped beams: the operator of every piece after the first (M, C, S, X, Q1 above are the
+  /// first piece's, over [0, first_piece_to]); empty for a uniform beam.
+  std::vector<PieceOperator> steps;
+  double first_piece_to = 0;
   std::vector<Reflection> reflections;
   std::vector<FieldClass> classes;
   double translation_scale = 1;  ///< a length: translations are divided by it in the line solves
@@ -142,6 +167,10 @@ struct PrismModel {
   /// Beam: the section resultant (Fx..Mz) spread over the prisms by area / second moments
   /// (statically equivalent). Plate: Fz shared by the two strip lines around y (linear).
   Eigen::VectorXd load_vector(const PointLoad& load) const;
+  /// Plate: the generalized forces per unit length along x of a pressure qz over the patch's y
+  /// range, each strip line taking the pressure against its hat function (linear between lines,
+  /// as a point load is shared): consistent with the strips' linear interpolation across y.
+  Eigen::VectorXd pressure_vector(const DistributedLoad& pressure) const;
   /// Section response from the fields at one x: beam: the conjugate rigid-section motion;
   /// plate: w, theta_x, theta_y interpolated linearly between strip lines at y.
   Deflection section_response(const Eigen::VectorXd& q, double y) const;
