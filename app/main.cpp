@@ -192,9 +192,11 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
                              r.frequencies_rad_s[i] / (2 * 3.141592653589793), mb::to_string(r.mode_families[i]));
   for (const auto& d : r.deflections) std::cout << "  probe " << probe_line(scene, d) << forces_line(scene, d) << "\n";
   for (const auto& rc : r.reactions)
-    std::cout << fmt::format("  reaction {} (x = {:g} m): F = [{:.6e}, {:.6e}, {:.6e}] N, M = [{:.6e}, {:.6e}, {:.6e}] N*m\n",
-                             rc.support, rc.position[0], rc.force[0], rc.force[1], rc.force[2], rc.moment[0],
-                             rc.moment[1], rc.moment[2]);
+    std::cout << fmt::format("  reaction {} ({}): F = [{:.6e}, {:.6e}, {:.6e}] N, M = [{:.6e}, {:.6e}, {:.6e}] N*m\n",
+                             rc.support,
+                             scene.is_beam() ? fmt::format("x = {:g} m", rc.position[0])
+                                             : fmt::format("at ({:g}, {:g}) m", rc.position[0], rc.position[1]),
+                             rc.force[0], rc.force[1], rc.force[2], rc.moment[0], rc.moment[1], rc.moment[2]);
   if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
   const auto& ee = sum.error_estimate;
   std::vector<std::string> est;
@@ -251,7 +253,7 @@ int main(int argc, char** argv) {
   std::string scene_path, backend = "exact", mesh_spec, mass = "consistent";
   bool json = false, verbose = false;
   solve->add_option("scene", scene_path, "scene file (TOML), or a built-in scene's name (modalbench list)")->required();
-  solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`)");
+  auto* backend_opt = solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`; default: exact)");
   solve->add_option("--mesh,-m", mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
   solve->add_option("--mass", mass, "consistent or lumped (back-ends that offer both)");
   std::vector<std::string> backend_options;
@@ -361,7 +363,7 @@ int main(int argc, char** argv) {
           (json ? std::cerr : std::cout) << "wrote " << f << "\n";
       }
       if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
-      else print_text(scene, backend, mesh, !mesh_spec.empty(), r, verbose);
+      else print_text(scene, backend_opt->count() > 0 ? backend : backend + " (default)", mesh, !mesh_spec.empty(), r, verbose);
       if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported ||
           r.summary.status == mb::Status::ResourceLimit) {
         if (json) std::cerr << "modalbench: " << r.summary.message << "\n";

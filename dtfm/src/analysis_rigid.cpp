@@ -52,8 +52,8 @@ Eigen::MatrixXd RigidLine::mass() const {
   Eigen::MatrixXd Mr = Eigen::MatrixXd::Zero(r, r);
   double from = 0;
   for (int k = 0; k < line.pieces(); ++k) {
-    const double to = k + 1 < line.pieces() ? line.steps[static_cast<std::size_t>(k)].x_to : line.length;
-    const double top = k == 0 ? line.first_to : to;
+    // Piece k over [from, top]: the first to first_to, the others to their own x_to.
+    const double top = k == 0 ? line.first_to : line.steps[static_cast<std::size_t>(k) - 1].x_to;
     const Eigen::MatrixXd& M = line.M_of(k);
     for (Eigen::Index p = 0; p < r; ++p)
       for (Eigen::Index q = 0; q <= p; ++q) {

@@ -58,8 +58,8 @@ void note(Result& r, const Frequencies& f) {
   r.summary.unknowns = std::max(r.summary.unknowns, f.unknowns);
   if (f.unresolved > 0)
     r.summary.raise(Status::NumericalIssue,
-                    fmt::format("exact: {} eigenvalue(s) below 1e-250 of the frequency scale (springs too soft to "
-                                "resolve in double precision) are reported as 0 but are not rigid-body modes",
+                    fmt::format("exact: {} eigenvalue(s) below what the mode count resolves (springs far softer than "
+                                "the structure: near-rigid modes) are reported as 0 but are not rigid-body modes",
                                 f.unresolved));
 }
 

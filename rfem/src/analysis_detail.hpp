@@ -64,5 +64,11 @@ Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, 
 /// Not reported (a warning) where the multipliers do not balance the unreduced model to 1e-8.
 void beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                     const std::vector<PointAction>& actions, Result& r);
+/// A plate's support reactions: per edge (x0, xL, y0, yB: the sum of its SDEs' forces, with their
+/// moment about the edge's middle, where the reaction is placed; the Kirchhoff corner forces fall in
+/// the corner elements' SDEs of the two edges) and per support at a point. Not reported (a warning)
+/// where the multipliers do not balance the unreduced model to 1e-8.
+void plate_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
+                     const std::vector<PointAction>& actions, Result& r);
 
 }  // namespace modalbench::rfem::detail

@@ -345,7 +345,7 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   // k_t l on w(P) and k_t l^3 / 12 on the tilt along the edge (rotation about the in-plane
   // normal); the rotational layer gives k_r l about the edge. A rigid edge thus holds w and the
   // tilt (the hard simple support of Mindlin plates, and w = 0 all along a Kirchhoff edge).
-  auto edge = [&](const Support& sp, bool along_x, int fixed) {
+  auto edge = [&](const Support& sp, bool along_x, int fixed, const char* name) {
     if (sp.translational == 0 && sp.rotational == 0) return;
     const int count = along_x ? nx : ny;
     for (int k = 0; k <= count; ++k) {
@@ -367,13 +367,14 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
         sd.stiffness[4] = sp.rotational * share;
       }
       sd.stiffness[2] = sp.translational * share;
+      m.supports.emplace_back(static_cast<int>(m.sdes.size()), name);  // one edge: many SDEs of one name
       m.sdes.push_back(sd);
     }
   };
-  edge(s.y0, true, 0);
-  edge(s.yB, true, ny);
-  edge(s.x0, false, 0);
-  edge(s.xL, false, nx);
+  edge(s.y0, true, 0, "y0");
+  edge(s.yB, true, ny, "yB");
+  edge(s.x0, false, 0, "x0");
+  edge(s.xL, false, nx, "xL");
   // Supports at points: an SDE to ground at P on the RFE whose cell holds it (off its centre the
   // attachment kinematics carry it), k_t on w and k_r on both rotations. Point masses: shared
   // between the (up to) four centres around them by the bilinear weights of point loads.

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -63,12 +64,27 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
     const SpMat At = rows_over_z0(rows, B);
     const SpMat A = At.transpose();
     const SpMat N = A * At;
+    const Eigen::VectorXd rhs = A * r0;
     Eigen::SimplicialLDLT<SpMat> ldlt(N);
-    if (ldlt.info() != Eigen::Success) {
-      out.residual = std::numeric_limits<double>::infinity();
-      return out;
+    const double dmax = N.diagonal().cwiseAbs().maxCoeff();
+    const bool regular = ldlt.info() == Eigen::Success && (ldlt.vectorD().array() > 1e-14 * dmax).all();
+    if (regular) {
+      y = ldlt.solve(rhs);
+    } else {
+      // Redundant holds (two edges hold a plate's corner element; a support on an end's element):
+      // the multipliers are not unique, their forces are. The minimum-norm ones, which share a
+      // redundant force equally: (N + mu I) y = A r0 refined (each step shrinks the error of a
+      // component of singular value s by mu / (s^2 + mu)); the residual below says how well.
+      SpMat Nr = N;
+      for (Eigen::Index i = 0; i < Nr.rows(); ++i) Nr.coeffRef(i, i) += 1e-12 * dmax;
+      ldlt.compute(Nr);
+      if (ldlt.info() != Eigen::Success) {
+        out.residual = std::numeric_limits<double>::infinity();
+        return out;
+      }
+      y = ldlt.solve(rhs);
+      for (int step = 0; step < 4; ++step) y += ldlt.solve(Eigen::VectorXd(rhs - N * y));
     }
-    y = ldlt.solve(A * r0);
     const double scale = std::max(f0.norm(), r0.norm());
     out.residual = scale > 0 ? (At * y - r0).norm() / scale : 0.0;
   }
@@ -124,6 +140,38 @@ void detail::beam_reactions(const Scene& s, const Model& model, const System& sy
   for (Deflection& d : r.deflections) {
     d.forces = free_body_forces(s, r.reactions, d.position[0]);
     d.has_forces = true;
+  }
+}
+
+void detail::plate_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
+                             const std::vector<PointAction>& actions, Result& r) {
+  const SupportForces sf = support_forces(model, sys, z, actions);
+  r.summary.set_diagnostic("reaction_residual", sf.residual);
+  if (!(sf.residual <= 1e-8)) {
+    r.summary.warnings.push_back(fmt::format("support reactions not reported: the constraint forces balance the model "
+                                             "only to {:.2g} (redundant rigid supports)",
+                                             sf.residual));
+    return;
+  }
+  const double a = s.geometry.length, b = s.geometry.width;
+  const std::map<std::string, Eigen::Vector3d> middles = {
+      {"x0", {0, b / 2, 0}}, {"xL", {a, b / 2, 0}}, {"y0", {a / 2, 0, 0}}, {"yB", {a / 2, b, 0}}};
+  for (std::size_t i = 0; i < sf.forces.size(); ++i) {
+    const std::string& name = model.supports[i].second;
+    const Sde& sd = model.sdes[static_cast<std::size_t>(sf.forces[i].sde)];
+    const auto mid = middles.find(name);
+    const Eigen::Vector3d at = mid != middles.end() ? mid->second : sd.point;
+    // The SDE's force at its point, moved to the reaction's point.
+    const Eigen::Vector3d F = sf.forces[i].force, M = sf.forces[i].moment + (sd.point - at).cross(F);
+    auto it = std::find_if(r.reactions.begin(), r.reactions.end(), [&](const Reaction& e) { return e.support == name; });
+    if (it == r.reactions.end()) {
+      r.reactions.push_back({name, {at.x(), at.y()}, {0, 0, 0}, {0, 0, 0}});
+      it = r.reactions.end() - 1;
+    }
+    for (int c = 0; c < 3; ++c) {
+      it->force[static_cast<std::size_t>(c)] += F[c];
+      it->moment[static_cast<std::size_t>(c)] += M[c];
+    }
   }
 }
 

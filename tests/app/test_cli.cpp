@@ -105,7 +105,7 @@ BOOST_AUTO_TEST_CASE(paths_that_are_not_scene_files) {
   BOOST_TEST(doc["file"] == "/tmp");
 }
 
-// Exit codes are the README's 0 / 1 / 2 / 3 for every command-line mistake.
+// Exit codes are docs/command-line.md's 0 / 1 / 2 / 3 for every command-line mistake.
 BOOST_AUTO_TEST_CASE(command_line_mistakes_exit_2) {
   for (const char* args : {"", "frobnicate", "solve", "compare --budget -1", "compare --budget nan",
                            "compare --budget 1e400"}) {
@@ -160,6 +160,10 @@ BOOST_AUTO_TEST_CASE(text_output_says_what_was_solved) {
   BOOST_TEST(rf.out.find("| mesh 64 (given) |") != std::string::npos, rf.out);
   const Run ts = run("solve two_span_beam --backend exact");
   BOOST_TEST(ts.out.find("reaction points[0] (x = 10 m)") != std::string::npos, ts.out);
+  const Run dt = run("solve two_span_beam --backend dtfm");  // reactions from every back-end that models them
+  BOOST_TEST(dt.out.find("reaction points[0] (x = 10 m)") != std::string::npos, dt.out);
+  const Run implicit = run("solve two_span_beam");  // no --backend: exact, and said
+  BOOST_TEST(implicit.out.find("| backend exact (default) |") != std::string::npos, implicit.out);
   const Run pl = run("solve paper_ss_plate --backend exact");
   BOOST_TEST(pl.out.find("theta_x = ") != std::string::npos, pl.out);
   const Run j = run("solve paper_fixed_beam --backend dtfm --json", false);

@@ -155,6 +155,37 @@ Rigid rigid_of(const LineSystem& sys) {
   return R;
 }
 
+/// How many rigid motions of the unsupported line no spring or hold restrains (the ends' and the
+/// attachments' together), from the kinematics alone; -1 where the line has no rigid motions of
+/// its own (A_fd(0) != 0, or pieces with other kinematics). For lines the split does not serve.
+int structural_free_rigid(const LineSystem& sys) {
+  const int m = sys.m;
+  const Eigen::MatrixXd A0 = sys.state_matrix(0.0);
+  if (!(A0.bottomLeftCorner(m, m).array() == 0.0).all()) return -1;
+  for (const LinePiece& piece : sys.steps) {
+    const Eigen::MatrixXd Ap = piece.state_matrix(0.0);
+    if (!(Ap.bottomLeftCorner(m, m).array() == 0.0).all() || Ap.topLeftCorner(m, m) != A0.topLeftCorner(m, m)) return -1;
+  }
+  const Eigen::MatrixXd Add = A0.topLeftCorner(m, m);
+  Eigen::MatrixXd rows(0, m);
+  auto restrain = [&](double xi, const std::vector<double>& k) {
+    const Eigen::MatrixXd X = Add * xi;
+    const Eigen::MatrixXd phi = X.exp();
+    for (int j = 0; j < m && j < static_cast<int>(k.size()); ++j)
+      if (k[static_cast<std::size_t>(j)] > 0) {
+        rows.conservativeResize(rows.rows() + 1, m);
+        rows.row(rows.rows() - 1) = phi.row(j);
+      }
+  };
+  restrain(0.0, sys.left_spring);
+  restrain(1.0, sys.right_spring);
+  for (const LineAttachment& at : sys.attachments) restrain(at.xi, at.spring);
+  if (rows.rows() == 0) return m;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(rows);
+  lu.setThreshold(1e-8);
+  return m - static_cast<int>(lu.rank());
+}
+
 /// The line in rigid amplitudes a and anchored elastic displacements e (header: LineRigidity):
 /// [[E, B], [B^T, C]] [e; a] = [f_e; Psi^T f].
 struct Split {
@@ -467,6 +498,9 @@ LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint
     out.unresolved = std::max(0, out.rigid - R.info.free_rigid);
   } else {
     out.rigid = std::min(N(delta), k);
+    // Without the split, what the count finds below its threshold is rigid only as far as the
+    // supports leave rigid motions free (a beam with a disc on soft bearings: near-rigid modes).
+    if (const int free = structural_free_rigid(sys); free >= 0) out.unresolved = std::max(0, out.rigid - free);
   }
   out.lambdas.assign(out.rigid, 0.0);
   auto rest = slice_spectrum(N, k - out.rigid, lo, lambda_hint, 1e-13, stats);
