@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "modalbench/equilibrium.hpp"
@@ -118,19 +119,31 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
   return out;
 }
 
+namespace {
+
+/// support_forces with its residual as a diagnostic; nothing (and a warning saying why) where the
+/// multipliers do not balance the unreduced model to 1e-8.
+std::optional<SupportForces> balanced_support_forces(const Model& model, const System& sys, const Eigen::VectorXd& z,
+                                                     const std::vector<PointAction>& actions, Result& r) {
+  SupportForces sf = support_forces(model, sys, z, actions);
+  r.summary.set_diagnostic("reaction_residual", sf.residual);
+  if (sf.residual <= 1e-8) return sf;
+  r.summary.warnings.push_back(fmt::format("support reactions not reported: the constraint forces balance the model "
+                                           "only to {:.2g}",
+                                           sf.residual));
+  return std::nullopt;
+}
+
+}  // namespace
+
 /// A beam's support reactions (support_forces) and, from them, the stress resultants at the probes
 /// by the equilibrium of the free body left of each (equilibrium.hpp). Not reported where the
-/// multipliers do not balance the unreduced model to 1e-8 (redundant rigid supports).
+/// multipliers do not balance the unreduced model to 1e-8.
 void detail::beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                             const std::vector<PointAction>& actions, Result& r) {
-  const SupportForces sf = support_forces(model, sys, z, actions);
-  r.summary.set_diagnostic("reaction_residual", sf.residual);
-  if (!(sf.residual <= 1e-8)) {
-    r.summary.warnings.push_back(fmt::format("support reactions not reported: the constraint forces balance the model "
-                                             "only to {:.2g} (redundant rigid supports)",
-                                             sf.residual));
-    return;
-  }
+  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, actions, r);
+  if (!checked) return;
+  const SupportForces& sf = *checked;
   for (std::size_t i = 0; i < sf.forces.size(); ++i) {
     const SupportForce& f = sf.forces[i];
     const Sde& sd = model.sdes[static_cast<std::size_t>(f.sde)];
@@ -145,14 +158,9 @@ void detail::beam_reactions(const Scene& s, const Model& model, const System& sy
 
 void detail::plate_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                              const std::vector<PointAction>& actions, Result& r) {
-  const SupportForces sf = support_forces(model, sys, z, actions);
-  r.summary.set_diagnostic("reaction_residual", sf.residual);
-  if (!(sf.residual <= 1e-8)) {
-    r.summary.warnings.push_back(fmt::format("support reactions not reported: the constraint forces balance the model "
-                                             "only to {:.2g} (redundant rigid supports)",
-                                             sf.residual));
-    return;
-  }
+  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, actions, r);
+  if (!checked) return;
+  const SupportForces& sf = *checked;
   const double a = s.geometry.length, b = s.geometry.width;
   const std::map<std::string, Eigen::Vector3d> middles = {
       {"x0", {0, b / 2, 0}}, {"xL", {a, b / 2, 0}}, {"y0", {a / 2, 0, 0}}, {"yB", {a / 2, b, 0}}};
