@@ -19,7 +19,7 @@ nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlo
 nlohmann::json scene_json(const SceneComparison& c) {
   nlohmann::json js;
   js["scene"] = c.scene.name;
-  js["scene_file"] = c.scene.source;
+  js["scene_file"] = display_path(c.scene.source);
   js["notes"] = c.notes;
   js["reference"] = {{"source", c.reference.source}, {"frequencies_rad_s", nlohmann::json::array()},
                      {"uncertainty_rad_s", nlohmann::json::array()}, {"families", nlohmann::json::array()}};

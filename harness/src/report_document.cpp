@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -9,6 +11,14 @@
 #include <cstdio>
 
 namespace modalbench::report_detail {
+
+std::string display_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path rel = fs::relative(fs::path(path), fs::current_path(ec), ec);
+  if (!ec && !rel.empty() && *rel.begin() != "..") return rel.generic_string();
+  return fs::path(path).filename().string();
+}
 
 std::string esc(const std::string& s) {
   std::string o;

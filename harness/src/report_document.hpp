@@ -11,6 +11,9 @@
 namespace modalbench::report_detail {
 
 std::string esc(const std::string& s);      ///< HTML-escaped
+/// A scene file as the report names it: relative to the working directory where it lies below it
+/// (scenes/two_span_beam.toml), else its file name (no build machine's absolute paths).
+std::string display_path(const std::string& path);
 std::string md_cell(const std::string& s);  ///< '|' escaped for a Markdown table cell
 std::string err_str(double e);              ///< relative error, or an em dash
 std::string num_str(double v);              ///< 6 significant digits, or an em dash

@@ -15,7 +15,7 @@ namespace modalbench::report_detail {
 namespace {
 
 void write_notes(Doc& doc, const SceneComparison& c) {
-  std::vector<std::string> notes = {fmt::format("scene file: {}", c.scene.source),
+  std::vector<std::string> notes = {fmt::format("scene file: {}", display_path(c.scene.source)),
                                     fmt::format("reference: {}", c.reference.source)};
   for (const auto& n : c.scene.notes) notes.push_back("scene: " + n);
   for (const auto& n : c.notes) notes.push_back(n);

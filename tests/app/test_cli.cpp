@@ -9,6 +9,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -190,6 +192,12 @@ BOOST_AUTO_TEST_CASE(compare_writes_a_report) {
   const Run r = run("compare " + scene("paper_fixed_beam.toml") + " --out " + dir.string());
   BOOST_TEST_REQUIRE(r.status == 0, r.out);
   for (const char* f : {"index.html", "report.md", "results.json"}) BOOST_TEST(std::filesystem::exists(dir / f), f);
+  // Scene files are named relative to the working directory, or by their name: never by the build
+  // machine's absolute path (the test runs outside the scenes' folder).
+  std::ifstream in(dir / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  BOOST_TEST(html.find(MODALBENCH_SCENES_DIR) == std::string::npos);
+  BOOST_TEST(html.find("scene file: paper_fixed_beam.toml") != std::string::npos);
 }
 
 // Issue 18 (1): short of memory, a solve is refused up front or reports resource-limit; it never
