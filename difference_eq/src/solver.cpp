@@ -256,13 +256,13 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   const std::vector<PointLoad> point_loads = s.all_point_loads();
   for (std::size_t i = 0; i < point_loads.size(); ++i) {
     const auto& l = point_loads[i];
-    const double pos = l.x / L * static_cast<double>(R);
-    const long r = std::lround(pos);
-    if (std::abs(l.x - static_cast<double>(r) * L / static_cast<double>(R)) > kNodeTol * L)
+    const long r = node_at(l.x, L, R);
+    if (r < 0)
       throw InputError(s.source, i < s.loads.size() ? fmt::format("loads[{}].x", i) : fmt::format("masses[{}].x", i - s.loads.size()),
                        fmt::format("not at a node of mesh R={}: x = {} m, nodes at multiples of L/R = {} m "
                                    "(nearest x = {} m)",
-                                   R, l.x, L / static_cast<double>(R), static_cast<double>(r) * L / static_cast<double>(R)));
+                                   R, l.x, L / static_cast<double>(R),
+                                   static_cast<double>(std::lround(l.x / L * static_cast<double>(R))) * L / static_cast<double>(R)));
     loads.push_back({r, l.Fz, -l.My});
     other_components = other_components || l.Fx != 0 || l.Fy != 0 || l.Mx != 0 || l.Mz != 0;
   }
@@ -392,8 +392,7 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
     for (const auto& p : s.request.probes) {
       Deflection d;
       d.position = {p[0], 0.0};
-      const long r = std::lround(p[0] / L * static_cast<double>(R));
-      if (std::abs(p[0] - static_cast<double>(r) * L / static_cast<double>(R)) <= kNodeTol * L) {
+      if (const long r = node_at(p[0], L, R); r >= 0) {
         d.w = st.w[r];
         d.theta_y = -st.slope[r];
       } else {

@@ -97,7 +97,9 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
     const auto [sde, c] = rows.hold_origin[h];
     if (auto it = local.find(sde); it != local.end()) it->second[c] = -y[nl + static_cast<long>(h)];
   }
-  for (auto& [sde, F] : local) {
+  // In the order of model.supports (a plate's edges: thousands of SDEs, looked up, not searched).
+  for (const auto& [sde, name] : m.supports) {
+    Vector6d& F = local.at(sde);
     const Sde& sd = m.sdes[static_cast<std::size_t>(sde)];
     // The deformation of an SDE to ground is minus its point's motion: the spring's force on the
     // model, -k times the motion, is k times the deformation.
@@ -110,12 +112,6 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
     s.moment = sd.axes * F.tail<3>();
     out.forces.push_back(s);
   }
-  // In the order of model.supports.
-  std::vector<SupportForce> ordered;
-  for (const auto& [sde, name] : m.supports)
-    for (const SupportForce& s : out.forces)
-      if (s.sde == sde) ordered.push_back(s);
-  out.forces = ordered;
   return out;
 }
 
