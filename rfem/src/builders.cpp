@@ -422,8 +422,10 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
     auto place = [](int p, int n, double d, double length) { return p < 0 ? 0.0 : p == n ? length : (p + 0.5) * d; };
     for (int q = -1; q <= ny; ++q)
       for (int p = -1; p <= nx; ++p)
-        if (value_index(p, q) != gauge)
+        if (value_index(p, q) != gauge) {
           m.basis_names.push_back(fmt::format("c(x={:.6g}, y={:.6g})", place(p, nx, dl, a), place(q, ny, db, b)));
+          m.basis_points.emplace_back(place(p, nx, dl, a), place(q, ny, db, b), 0.0);
+        }
     const int kw = m.local_index(dofs::Uz), kx = m.local_index(dofs::Rx), ky = m.local_index(dofs::Ry);
     const int na = m.dofs_per_element();
     std::vector<Eigen::Triplet<double>> t;

@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "modalbench/equilibrium.hpp"
@@ -48,6 +49,169 @@ SpMat rows_over_z0(const detail::RigidRows& rows, const SpMat& B) {
   return At;
 }
 
+/// The columns of At (links first, then holds) that hold each element, by element.
+std::map<int, std::vector<long>> holds_by_element(const Model& m, const detail::RigidRows& rows, long nl) {
+  std::map<int, std::vector<long>> out;
+  for (std::size_t h = 0; h < rows.holds.size(); ++h)
+    out[m.sdes[static_cast<std::size_t>(rows.hold_origin[h].first)].a].push_back(nl + static_cast<long>(h));
+  return out;
+}
+
+/// The columns `cols` of At as a dense matrix over the rows any of them touches.
+Eigen::MatrixXd dense_columns(const SpMat& At, const std::vector<long>& cols) {
+  std::map<long, long> slot;
+  for (long c : cols)
+    for (SpMat::InnerIterator it(At, c); it; ++it) slot.emplace(it.row(), 0);
+  long k = 0;
+  for (auto& [r, i] : slot) i = k++;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(k, static_cast<long>(cols.size()));
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    for (SpMat::InnerIterator it(At, cols[j]); it; ++it) G(slot.at(it.row()), static_cast<long>(j)) = it.value();
+  return G;
+}
+
+/// Whether the last column of G depends on the others.
+bool depends(const Eigen::MatrixXd& G) {
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(G);
+  qr.setThreshold(1e-10);
+  return qr.rank() < G.cols();
+}
+
+/// The rigid rows that repeat others, whose multipliers are set aside (zero): a hold that repeats
+/// the other holds of its element (two edges on a plate's corner element, a support on a beam end's
+/// element), and a link whose constraint the holds of its two elements already impose (between two
+/// elements of a held plate edge). Their forces are not determined by the model's statics: the link's
+/// moves force along the held edge (or between two edges through the corner element), which the
+/// elastic limit does not fix either; with zero there, every edge's total is its elements' load plus
+/// what the free elements pass to them. A minimum-norm solve instead routed 5 % of a rectangle's
+/// load from its long edges to its short ones through the corners.
+std::vector<bool> redundant_rows(const Model& m, const detail::RigidRows& rows, const SpMat& At) {
+  const long nl = static_cast<long>(rows.links.size());
+  std::vector<bool> out(static_cast<std::size_t>(At.cols()), false);
+  const auto holds = holds_by_element(m, rows, nl);
+  const int na = m.dofs_per_element();
+  for (const auto& [element, cols] : holds)  // in order: the first holds stay
+    for (std::size_t j = 1; j < cols.size(); ++j) {
+      std::vector<long> trial;
+      for (std::size_t k = 0; k <= j; ++k)
+        if (k == j || !out[static_cast<std::size_t>(cols[k])]) trial.push_back(cols[k]);
+      out[static_cast<std::size_t>(cols[j])] = depends(dense_columns(At, trial));
+    }
+  for (long l = 0; l < nl; ++l) {
+    std::set<int> bodies;
+    for (auto [i, c] : rows.links[static_cast<std::size_t>(l)]) bodies.insert(static_cast<int>(i / na));
+    std::vector<long> trial;
+    for (int b : bodies)
+      if (auto it = holds.find(b); it != holds.end())
+        for (long c : it->second)
+          if (!out[static_cast<std::size_t>(c)]) trial.push_back(c);
+    if (trial.empty()) continue;
+    trial.push_back(l);
+    out[static_cast<std::size_t>(l)] = depends(dense_columns(At, trial));
+  }
+  return out;
+}
+
+/// Solves At y = r0 in the least-squares sense by the normal equations over the rows that are not
+/// redundant (their normal matrix is then regular); a hold set aside shares its element's force
+/// with the others by their minimum-norm multipliers. `residual` gets ||At y - r0|| / scale (inf:
+/// the normal matrix is singular still).
+Eigen::VectorXd multipliers(const Model& m, const detail::RigidRows& rows, const SpMat& At, const Eigen::VectorXd& r0,
+                            double scale, double& residual) {
+  const long n = At.cols(), nl = static_cast<long>(rows.links.size());
+  const std::vector<bool> redundant = redundant_rows(m, rows, At);
+  std::vector<long> index;
+  for (long j = 0; j < n; ++j)
+    if (!redundant[static_cast<std::size_t>(j)]) index.push_back(j);
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t k = 0; k < index.size(); ++k)
+    for (SpMat::InnerIterator it(At, index[k]); it; ++it) t.emplace_back(it.row(), static_cast<long>(k), it.value());
+  SpMat Ak(At.rows(), static_cast<long>(index.size()));
+  Ak.setFromTriplets(t.begin(), t.end());
+  // Normal equations (A A') y = A r0 with A = Ak': banded like the model (a sparse QR of At took
+  // seconds on a 20000-element beam); the residual below says what they achieved.
+  const SpMat A = Ak.transpose();
+  const SpMat N = A * Ak;
+  Eigen::SimplicialLDLT<SpMat> ldlt(N);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+  const double dmax = N.size() > 0 ? N.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array().abs() <= 1e-14 * dmax).any()) {
+    residual = std::numeric_limits<double>::infinity();
+    return y;
+  }
+  const Eigen::VectorXd rhs = A * r0;
+  Eigen::VectorXd yk = ldlt.solve(rhs);
+  yk += ldlt.solve(Eigen::VectorXd(rhs - N * yk));  // one refinement step
+  for (std::size_t k = 0; k < index.size(); ++k) y[index[k]] = yk[static_cast<long>(k)];
+  for (const auto& [element, cols] : holds_by_element(m, rows, nl)) {
+    bool shared = false;
+    for (long c : cols) shared = shared || redundant[static_cast<std::size_t>(c)];
+    if (!shared) continue;
+    const Eigen::MatrixXd G = dense_columns(At, cols);
+    Eigen::VectorXd yg(static_cast<long>(cols.size()));
+    for (std::size_t j = 0; j < cols.size(); ++j) yg[static_cast<long>(j)] = y[cols[j]];
+    const Eigen::VectorXd even = G.completeOrthogonalDecomposition().solve(Eigen::VectorXd(G * yg));
+    for (std::size_t j = 0; j < cols.size(); ++j) y[cols[j]] = even[static_cast<long>(j)];
+  }
+  residual = scale > 0 ? (At * y - r0).norm() / scale : 0.0;
+  return y;
+}
+
+/// Where every column of the builder's basis that a hold touches is a point's w and the holds pin
+/// each of them (as many independent holds as columns touched: a Kirchhoff plate's held edges in
+/// corner-value coordinates), the held reactions need no multipliers: the force at each pinned
+/// point is the generalized reaction -r0 there, unique whatever the holds' redundancy (an edge's
+/// 2 (n + 1) holds pin its n + 2 values). A point pinned by the holds of several SDEs (a corner,
+/// held by two edges) gives each an equal share. Per SDE (global axes, about its point); nothing
+/// where the columns are not pinned so.
+std::optional<std::map<int, SupportForce>> pinned_point_forces(const Model& m, const System& sys,
+                                                               const detail::RigidRows& rows, const SpMat& At,
+                                                               const Eigen::VectorXd& r0, double scale,
+                                                               double& residual) {
+  if (m.basis_points.empty() || !rows.links.empty() || rows.holds.empty()) return std::nullopt;
+  std::map<long, std::set<int>> pinned_by;  // column -> SDEs whose holds touch it
+  for (long h = 0; h < At.cols(); ++h)
+    for (SpMat::InnerIterator it(At, h); it; ++it)
+      if (it.value() != 0.0) pinned_by[it.row()].insert(rows.hold_origin[static_cast<std::size_t>(h)].first);
+  if (static_cast<long>(pinned_by.size()) != sys.held) return std::nullopt;
+  std::map<int, SupportForce> out;
+  for (const auto& [sde, name] : m.supports) out[sde].sde = sde;
+  Eigen::VectorXd rest = r0;
+  for (const auto& [col, sdes] : pinned_by) {
+    rest[col] = 0;
+    const Eigen::Vector3d F(0, 0, -r0[col] / static_cast<double>(sdes.size()));
+    const Eigen::Vector3d& P = m.basis_points[static_cast<std::size_t>(col)];
+    for (int sde : sdes) {
+      auto it = out.find(sde);
+      if (it == out.end()) return std::nullopt;  // a hold that stands for no scene support
+      it->second.force += F;
+      it->second.moment += (P - m.sdes[static_cast<std::size_t>(sde)].point).cross(F);
+    }
+  }
+  residual = scale > 0 ? rest.norm() / scale : 0.0;
+  return out;
+}
+
+/// The held components' forces per SDE of a support (global axes, about its point), from the
+/// multipliers of the rigid rows.
+std::map<int, SupportForce> multiplier_forces(const Model& m, const detail::RigidRows& rows, const SpMat& At,
+                                              const Eigen::VectorXd& r0, double scale, double& residual) {
+  const long nl = static_cast<long>(rows.links.size());
+  const Eigen::VectorXd y = multipliers(m, rows, At, r0, scale, residual);
+  std::map<int, Vector6d> local;
+  for (const auto& [sde, name] : m.supports) local[sde] = Vector6d::Zero();
+  for (std::size_t h = 0; h < rows.holds.size(); ++h) {
+    const auto [sde, c] = rows.hold_origin[h];
+    if (auto it = local.find(sde); it != local.end()) it->second[c] = -y[nl + static_cast<long>(h)];
+  }
+  std::map<int, SupportForce> out;
+  for (const auto& [sde, F] : local) {
+    const Sde& sd = m.sdes[static_cast<std::size_t>(sde)];
+    out[sde] = {sde, sd.axes * F.head<3>(), sd.axes * F.tail<3>()};
+  }
+  return out;
+}
+
 }  // namespace
 
 SupportForces support_forces(const Model& m, const System& sys, const Eigen::VectorXd& z,
@@ -57,59 +221,32 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
   const Eigen::VectorXd f0 = B.transpose() * fq;
   const Eigen::VectorXd r0 = f0 - B.transpose() * (detail::over_q(m, detail::element_triplets(m, false)) * q);
   const detail::RigidRows rows = detail::rigid_rows(m);
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(static_cast<long>(rows.links.size() + rows.holds.size()));
   SupportForces out;
-  if (y.size() > 0) {
-    // Normal equations (A A') y = A r0 with A = At': A A' is banded like the model (a sparse QR
-    // of At took seconds on a 20000-element beam); the residual below says what they achieved.
+  std::map<int, SupportForce> held;
+  if (!rows.links.empty() || !rows.holds.empty()) {
     const SpMat At = rows_over_z0(rows, B);
-    const SpMat A = At.transpose();
-    const SpMat N = A * At;
-    const Eigen::VectorXd rhs = A * r0;
-    Eigen::SimplicialLDLT<SpMat> ldlt(N);
-    const double dmax = N.diagonal().cwiseAbs().maxCoeff();
-    const bool regular = ldlt.info() == Eigen::Success && (ldlt.vectorD().array() > 1e-14 * dmax).all();
-    if (regular) {
-      y = ldlt.solve(rhs);
-    } else {
-      // Redundant holds (two edges hold a plate's corner element; a support on an end's element):
-      // the multipliers are not unique, their forces are. The minimum-norm ones, which share a
-      // redundant force equally: (N + mu I) y = A r0 refined (each step shrinks the error of a
-      // component of singular value s by mu / (s^2 + mu)); the residual below says how well.
-      SpMat Nr = N;
-      for (Eigen::Index i = 0; i < Nr.rows(); ++i) Nr.coeffRef(i, i) += 1e-12 * dmax;
-      ldlt.compute(Nr);
-      if (ldlt.info() != Eigen::Success) {
-        out.residual = std::numeric_limits<double>::infinity();
-        return out;
-      }
-      y = ldlt.solve(rhs);
-      for (int step = 0; step < 4; ++step) y += ldlt.solve(Eigen::VectorXd(rhs - N * y));
-    }
     const double scale = std::max(f0.norm(), r0.norm());
-    out.residual = scale > 0 ? (At * y - r0).norm() / scale : 0.0;
+    // The holds' columns alone (pinned_point_forces runs only where there are no links).
+    const SpMat Ah = At.rightCols(static_cast<long>(rows.holds.size()));
+    if (auto pinned = pinned_point_forces(m, sys, rows, Ah, r0, scale, out.residual)) held = std::move(*pinned);
+    else held = multiplier_forces(m, rows, At, r0, scale, out.residual);
+    if (!std::isfinite(out.residual)) return out;
   }
-  // Per SDE to ground: the held components' multipliers, then the finite ones.
-  std::map<int, Vector6d> local;
-  for (const auto& [sde, name] : m.supports) local[sde] = Vector6d::Zero();
-  const long nl = static_cast<long>(rows.links.size());
-  for (std::size_t h = 0; h < rows.holds.size(); ++h) {
-    const auto [sde, c] = rows.hold_origin[h];
-    if (auto it = local.find(sde); it != local.end()) it->second[c] = -y[nl + static_cast<long>(h)];
-  }
-  // In the order of model.supports (a plate's edges: thousands of SDEs, looked up, not searched).
+  // In the order of model.supports (a plate's edges: thousands of SDEs, looked up, not searched):
+  // the held components' forces, then the finite ones'.
   for (const auto& [sde, name] : m.supports) {
-    Vector6d& F = local.at(sde);
     const Sde& sd = m.sdes[static_cast<std::size_t>(sde)];
     // The deformation of an SDE to ground is minus its point's motion: the spring's force on the
     // model, -k times the motion, is k times the deformation.
     const Vector6d d = detail::deformation(m, sd, q);
+    Vector6d F = Vector6d::Zero();
     for (int c = 0; c < 6; ++c)
       if (!std::isinf(sd.stiffness[c])) F[c] = sd.stiffness[c] * d[c];
-    SupportForce s;
-    s.sde = sde;
-    s.force = sd.axes * F.head<3>();
-    s.moment = sd.axes * F.tail<3>();
+    SupportForce s{sde, sd.axes * F.head<3>(), sd.axes * F.tail<3>()};
+    if (auto it = held.find(sde); it != held.end()) {
+      s.force += it->second.force;
+      s.moment += it->second.moment;
+    }
     out.forces.push_back(s);
   }
   return out;

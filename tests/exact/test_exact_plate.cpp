@@ -134,3 +134,51 @@ BOOST_AUTO_TEST_CASE(navier_receptance_properties) {
   BOOST_TEST(std::abs(std::abs(hr) / modal - 1) < 1e-2);
   BOOST_TEST(hr.imag() < 0);  // the response lags the force
 }
+
+// Reactions of the simply supported plate (navier_reactions) against closed forms:
+//  - an edge's resultant as a hard support (its effective shear plus half of each corner force at
+//    its ends) is the integral of the transverse shear Q_x along it; from Navier's series, summed
+//    over m with sum_{m odd} 1 / (m^2 + c^2) = pi tanh(pi c / 2) / (4 c), under a uniform p:
+//      int_0^b Q_x(0, y) dy = (8 p b^2 / pi^3) sum_{n odd} tanh(n pi a / (2 b)) / n^3
+//    (a single series with a 1/n^3 tail, summed here to 2e5 terms);
+//  - the corner force of a square plate under uniform p: 0.065 p a^2 (Timoshenko &
+//    Woinowsky-Krieger, Table 8, nu = 0.3, three digits);
+//  - equilibrium of forces and moments under a patch and a point force.
+BOOST_AUTO_TEST_CASE(navier_reactions_against_closed_forms) {
+  const double h = 0.01, D = D_of(h), p = -1000.0;
+  auto edge_shear = [&](double a, double b) {
+    double s = 0;
+    for (int n = 199999; n >= 1; n -= 2) s += std::tanh(n * std::numbers::pi * a / (2 * b)) / std::pow(n, 3);
+    return -8 * p * b * b / std::pow(std::numbers::pi, 3) * s;  // the support's force on the plate, +z
+  };
+  for (double b : {0.8, 1.0, 2.5}) {
+    const double a = 1.0;
+    const NavierReactions r = navier_reactions(a, b, D, nu, {}, {{0, a, 0, b, p}}, 1e-11);
+    BOOST_TEST_MESSAGE("b = " << b << ": " << r.terms << " terms, tail " << r.tail_relative);
+    BOOST_TEST(r.tail_relative <= 1e-11);
+    const double x0 = r.edge_force[0] + (r.corner[0] + r.corner[2]) / 2;
+    const double y0 = r.edge_force[2] + (r.corner[0] + r.corner[1]) / 2;
+    BOOST_TEST(std::abs(x0 - edge_shear(a, b)) <= 1e-9 * std::abs(p * a * b), "b = " << b << ": x0 " << x0);
+    BOOST_TEST(std::abs(y0 - edge_shear(b, a)) <= 1e-9 * std::abs(p * a * b), "b = " << b << ": y0 " << y0);
+    if (b == 1.0)
+      for (double c : r.corner) BOOST_TEST(std::abs(c / (p * a * a) - 0.065) <= 0.0005, "corner " << c);
+  }
+  // A patch and a point force on a 1 x 0.6 plate: forces and moments about both axes balance.
+  const double a = 1.0, b = 0.6;
+  const std::vector<std::array<double, 3>> forces = {{0.3, 0.45, -250.0}};
+  const std::vector<PressurePatch> patches = {{0.5, 0.9, 0.1, 0.3, -4000.0}};
+  const NavierReactions r = navier_reactions(a, b, D, nu, forces, patches, 1e-11);
+  const std::array<std::array<double, 2>, 4> mid = {{{0, b / 2}, {a, b / 2}, {a / 2, 0}, {a / 2, b}}};
+  const std::array<std::array<double, 2>, 4> corner = {{{0, 0}, {a, 0}, {0, b}, {a, b}}};
+  double fz = -250.0 - 4000.0 * 0.4 * 0.2, mx = 0.45 * -250.0 + 0.2 * -320.0, my = -(0.3 * -250.0 + 0.7 * -320.0);
+  for (int k = 0; k < 4; ++k) {
+    fz += r.edge_force[k] + r.corner[k];
+    // Moments about the origin: M_x = y F, M_y = -x F; the x-edges' first moments are along y.
+    const double first = r.edge_first_moment[k];
+    mx += mid[k][1] * r.edge_force[k] + (k < 2 ? first : 0.0) + corner[k][1] * r.corner[k];
+    my -= mid[k][0] * r.edge_force[k] + (k < 2 ? 0.0 : first) + corner[k][0] * r.corner[k];
+  }
+  BOOST_TEST(std::abs(fz) <= 1e-10 * 570.0);
+  BOOST_TEST(std::abs(mx) <= 1e-10 * 570.0 * a);
+  BOOST_TEST(std::abs(my) <= 1e-10 * 570.0 * a);
+}

@@ -19,6 +19,31 @@ inline const Registry& registry() {
 
 inline double rel(double a, double ref) { return std::abs(a / ref - 1.0); }
 
+/// The tests' plate: steel, 1 x 0.8 x 0.01 m, Kirchhoff, every edge simply supported; `extra` adds
+/// its loads, points and masses, `request` the body of its [request] table.
+inline std::string steel_plate(const std::string& extra, const std::string& request) {
+  return R"(
+[scene]
+name = "steel-plate"
+kind = "plate"
+physics = "bending"
+theory = "kirchhoff"
+[geometry]
+length = 1.0
+width = 0.8
+height = 0.01
+[material]
+E = 2.1e11
+nu = 0.3
+rho = 7850.0
+[supports]
+x0 = "pinned"
+xL = "pinned"
+y0 = "pinned"
+yB = "pinned"
+)" + extra + "\n[request]\n" + request + "\n";
+}
+
 /// Parsing `text` must fail with an InputError naming `key`, its reason containing `reason`.
 inline void expect_input_error(const std::string& text, const std::string& key, const std::string& reason) {
   try {

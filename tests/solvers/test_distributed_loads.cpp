@@ -183,9 +183,8 @@ probes = [[0.5, 0.5]]
     BOOST_TEST(rel(rf.deflections[0].w, w) <= rf.summary.error_estimate.deflections);
     // Its edge reactions carry the whole pressure and their moments about the centre balance, to
     // the 1e-8 rfem guarantees where it reports reactions (their residual in the unreduced model);
-    // a quarter each by the square's symmetry, to the accuracy of the multipliers themselves (normal
-    // equations: rounding times the constraints' condition squared, 2e-7 of an edge here; the
-    // corner elements, held by two edges, share their force by the minimum-norm split).
+    // a quarter each by the square's symmetry (the corner values, pinned by two edges, share their
+    // force equally).
     BOOST_REQUIRE_EQUAL(rf.reactions.size(), 4u);
     const double total = p * a * a;
     double fz = 0, mx = 0, my = 0;

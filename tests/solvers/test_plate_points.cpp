@@ -26,26 +26,7 @@ constexpr double a = 1.0, b = 0.8, h = 0.01, E = 2.1e11, nu = 0.3, rho = 7850.0;
 const double D = E * h * h * h / (12 * (1 - nu * nu));
 
 std::string plate(const std::string& extra, int modes, const std::string& probes = "") {
-  return R"(
-[scene]
-name = "plate-points"
-kind = "plate"
-physics = "bending"
-theory = "kirchhoff"
-[geometry]
-length = 1.0
-width = 0.8
-height = 0.01
-[material]
-E = 2.1e11
-nu = 0.3
-rho = 7850.0
-[supports]
-x0 = "pinned"
-xL = "pinned"
-y0 = "pinned"
-yB = "pinned"
-)" + extra + "\n[request]\nmodes = " + std::to_string(modes) + "\n" + probes;
+  return steel_plate(extra, "modes = " + std::to_string(modes) + "\n" + probes);
 }
 
 Result rfem_default(const Scene& s) {

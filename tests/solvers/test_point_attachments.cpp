@@ -189,33 +189,7 @@ BOOST_AUTO_TEST_CASE(what_is_not_modelled_is_said) {
   BOOST_TEST(r.frequencies_rad_s.size() == 3u);
   BOOST_TEST(r.deflections.empty());
   // dtfm's strips run from edge to edge of a plate: no supports or masses at points of it.
-  const Scene plate = parse_scene(R"(
-[scene]
-name = "p"
-kind = "plate"
-physics = "bending"
-theory = "kirchhoff"
-[geometry]
-length = 1.0
-width = 0.8
-height = 0.01
-[material]
-E = 2.1e11
-nu = 0.3
-rho = 7850.0
-[supports]
-x0 = "pinned"
-xL = "pinned"
-y0 = "pinned"
-yB = "pinned"
-[[masses]]
-x = 0.5
-y = 0.4
-mass = 1.0
-[request]
-modes = 2
-)",
-                                  "plate.toml");
+  const Scene plate = parse_scene(steel_plate("[[masses]]\nx = 0.5\ny = 0.4\nmass = 1.0", "modes = 2"), "plate.toml");
   const Capability p = registry().get("dtfm").supports(plate);
   BOOST_TEST(!p.any());
   BOOST_TEST(p.reason.find("points of a plate") != std::string::npos, p.reason);

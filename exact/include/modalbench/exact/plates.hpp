@@ -45,6 +45,21 @@ std::array<double, 3> navier_static(double a, double b, double D, const std::vec
                                     const std::vector<PressurePatch>& patches = {},
                                     std::array<double, 3>* curvature = nullptr, double* curvature_tail = nullptr);
 
+/// The reactions of a simply supported Kirchhoff plate under the same loads (plate_reactions.cpp):
+/// Levy single series whose strips are solved in closed form, terms doubled from 64 until the
+/// estimated truncation error is below tolerance / 10 of the total load or max_terms is reached.
+struct NavierReactions {
+  /// Edges x = 0, x = a, y = 0, y = b: the total Kirchhoff effective shear the support exerts (N,
+  /// +z) and its first moment about the edge's middle along the edge (N m), corners excluded.
+  std::array<double, 4> edge_force{}, edge_first_moment{};
+  /// The corner forces at (0,0), (a,0), (0,b), (a,b) (N, +z; they hold the corners down).
+  std::array<double, 4> corner{};
+  int terms = 0;                      ///< series terms per direction
+  double tail = 0, tail_relative = 0; ///< truncation estimate, N and relative to the total load
+};
+NavierReactions navier_reactions(double a, double b, double D, double nu, const std::vector<std::array<double, 3>>& forces,
+                                 const std::vector<PressurePatch>& patches, double tolerance, int max_terms = 1 << 18);
+
 /// Mindlin plate, all edges simply supported (hard), every branch.
 std::vector<double> mindlin_ss_frequencies(double a, double b, double h, double E, double nu, double G,
                                            double kappa, double rho, int k);

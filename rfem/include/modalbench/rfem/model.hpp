@@ -105,6 +105,9 @@ struct Model {
   /// Optional generalized coordinates: q = basis z (rows: active DOFs, element-major). Empty: z = q.
   SpMat basis;
   std::vector<std::string> basis_names;  ///< one per column of `basis`
+  /// Where each column of `basis` is a transverse displacement w at a point: that point (empty
+  /// otherwise). Where the holds pin such columns, their reactions are the forces there.
+  std::vector<Eigen::Vector3d> basis_points;
   /// Which mode family each active DOF belongs to (parallel to `active`); Unknown if not meaningful.
   std::vector<ModeFamily> dof_family;
   double omega_hint = 0;    ///< rad/s, a characteristic low natural frequency (places the eigen shift)
