@@ -96,6 +96,26 @@ inline int doubling_levels(double h, double h_base) {
 }
 
 
+/// A distributed load on one segment of a class line: y' = A y + g0 + g1 s (s from the segment's
+/// left node), g = [0; -p(x)], p the class's load per unit length (linear within the segment).
+struct SegmentLoad {
+  Eigen::VectorXd g0, g1;
+};
+
+/// y_p(t) with y_p' = A y_p + g0 + g1 s, y_p(0) = 0: the last column of the exponential of the
+/// augmented matrix [[A, g1, g0], [0, 0, 1], [0, 0, 0]] t (t of either sign).
+Eigen::VectorXd particular(const Eigen::MatrixXd& A, const SegmentLoad& ld, double t);
+
+/// Adds to `out` a class's share of the static solution's field integrals (FieldIntegrals):
+/// int q dx and int (x - L/2) q dx by 8-point Gauss on every segment, the state at each point
+/// carried from the segment's left node by exp(A t) with the segment's load's particular solution
+/// (segments no longer than a base piece: exp(A t) stays well conditioned); the transfer matrices
+/// are formed once per segment length and load. And the forces of the nodes' conditions. `d`,
+/// `f`: the class's nodal solution and loads (nodes with conditions in their B coordinates).
+void integrate_fields(const LineAnalysis::ClassLine& c, const std::vector<double>& x, double h_base,
+                      const Eigen::VectorXd& d, const Eigen::VectorXd& f,
+                      const std::vector<std::optional<SegmentLoad>>& loads, FieldIntegrals& out);
+
 struct AssemblyInfo {
   int clamped_below = 0;   // sum of the segments' J0
   double log_poles = 0;    // sum of the segments' log |det Tdf|

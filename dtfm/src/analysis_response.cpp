@@ -52,15 +52,12 @@ std::vector<Attached> attach(const std::vector<double>& points, std::vector<doub
 LongSegment segment_k(const Eigen::MatrixXd& A, double h, int levels) { return long_segment_dynamic_stiffness(A, h, levels); }
 LongSegmentC segment_k(const Eigen::MatrixXcd& A, double h, int levels) { return long_segment_dynamic_stiffness(A, h, levels); }
 
-/// A distributed load on one segment of a class line: y' = A y + g0 + g1 s (s from the segment's
-/// left node), g = [0; -p(x)], p the class's load per unit length (linear within the segment).
-struct SegmentLoad {
-  Eigen::VectorXd g0, g1;
-};
+using detail::SegmentLoad;
+using detail::particular;
 
-/// y_p(t) with y_p' = A y_p + g0 + g1 s, y_p(0) = 0: the last column of the exponential of the
-/// augmented matrix [[A, g1, g0], [0, 0, 1], [0, 0, 0]] t (t of either sign).
-Eigen::VectorXd particular(const Eigen::MatrixXd& A, const SegmentLoad& ld, double t) {
+}  // namespace
+
+Eigen::VectorXd detail::particular(const Eigen::MatrixXd& A, const SegmentLoad& ld, double t) {
   const Eigen::Index n = A.rows();
   Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n + 2, n + 2);
   E.topLeftCorner(n, n) = A;
@@ -72,6 +69,8 @@ Eigen::VectorXd particular(const Eigen::MatrixXd& A, const SegmentLoad& ld, doub
   const Eigen::MatrixXd X = sc.asDiagonal() * Eigen::MatrixXd(E.exp()) * sc.cwiseInverse().asDiagonal();
   return X.col(n + 1).head(n);
 }
+
+namespace {
 
 /// Class displacements (nodes with conditions out of their B coordinates) at x[i] + t from a
 /// solution d: the state of node i on the side of t (its displacement and the adjacent segment's
@@ -223,7 +222,7 @@ std::vector<std::optional<SegmentLoad>> segment_loads(const LineAnalysis::ClassL
 std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& loads,
                                               const std::vector<std::array<double, 2>>& probes,
                                               const std::vector<DistributedLoad>& distributed,
-                                              std::vector<PointReaction>* reactions) {
+                                              std::vector<PointReaction>* reactions, FieldIntegrals* integrals) {
   std::vector<double> required;
   for (const auto& p : loads) required.push_back(std::clamp(p.x, 0.0, model_.length));
   for (const auto& d : distributed)
@@ -237,6 +236,10 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
   // Each class's share of the loads (physical units): a class is unloaded when its share is
   // rounding of the total (a moment at an end leaks 1e-17 of itself into other classes), not
   // when it is exactly 0.
+  if (integrals) {
+    *integrals = FieldIntegrals{};
+    for (Eigen::VectorXd* v : {&integrals->q, &integrals->xq, &integrals->q0, &integrals->qL}) *v = Eigen::VectorXd::Zero(m);
+  }
   std::vector<double> share(lines_.size(), 0.0);
   double total_share = 0;
   for (std::size_t ci = 0; ci < lines_.size(); ++ci) {
@@ -272,8 +275,9 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
     }
     const ClassLine& c = rl ? rl->line : c0;
     Mesh mesh = mesh_for(c0, 0.0, required);
-    // Distributed loads: segments no longer than a base piece (the particular solution's exponential).
-    if (!distributed.empty() && mesh.h_base < model_.length)
+    // Distributed loads and integrals: segments no longer than a base piece (the particular
+    // solution's exponential, the integrands' transfer).
+    if ((!distributed.empty() || integrals) && mesh.h_base < model_.length)
       mesh = mesh_for(c0, 0.0, required, static_cast<int>(std::ceil(model_.length / mesh.h_base)));
     const auto& x = mesh.x;
     const int nn = static_cast<int>(x.size());
@@ -313,6 +317,10 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       qp[j] += c.W * dc;
     }
     if (reactions && model_.kind == SceneKind::Beam) add_reactions(c, mesh, rl ? &*rl : nullptr, d, amp, f, react);
+    if (integrals && rl) integrals->complete = false;
+    if (integrals && !rl) {
+      detail::integrate_fields(c, x, mesh.h_base, d, f, seg_loads, *integrals);
+    }
   }
   if (reactions) {
     reactions->clear();

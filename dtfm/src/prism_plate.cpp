@@ -184,6 +184,12 @@ PrismModel build_plate(const Scene& s, int n, const ModelOptions& opt) {
       mdl.rigid_body_motions = 3 - (rows.empty() ? 0 : static_cast<int>(Eigen::FullPivLU<Eigen::MatrixXd>(Cm).rank()));
     }
   }
+  auto holds = [](const Support& e) { return std::isinf(e.translational) || std::isinf(e.rotational); };
+  if (holds(s.y0) || holds(s.yB)) {
+    Scene free = s;
+    free.y0 = free.yB = Support{};
+    mdl.free_long_edges = std::make_shared<const PrismModel>(build_plate(free, n, opt));
+  }
   return mdl;
 }
 

@@ -92,6 +92,16 @@ struct PointReaction {
   std::array<double, 6> F{};
 };
 
+/// A static solution's fields integrated along x (plates: what the long edges' reactions need),
+/// physical units over the model's fields: int_0^L q dx, int_0^L (x - L/2) q dx and q at x = 0
+/// and L; and, per node with a condition, the generalized forces it exerts on the fields (K d - f
+/// on its held coordinates, -k d for its springs).
+struct FieldIntegrals {
+  Eigen::VectorXd q, xq, q0, qL;
+  std::map<double, Eigen::VectorXd> node_forces;
+  bool complete = true;  ///< false where a loaded class was solved split into rigid motions (beams)
+};
+
 namespace detail {
 struct RigidLine;
 }
@@ -113,10 +123,11 @@ class LineAnalysis {
   /// solve breaks down numerically.
   /// `distributed`: beam line loads (linear over their ranges) or plate pressures, their particular
   /// solutions exact along x. `reactions` (beams): what each node with a support or mass exerts on
-  /// the beam (a mass-only node: zero), ascending x.
+  /// the beam (a mass-only node: zero), ascending x. `integrals`: the fields' integrals along x (a
+/// mesh of base pieces then, as under distributed loads).
   std::vector<Deflection> statics(const std::vector<PointLoad>& loads, const std::vector<std::array<double, 2>>& probes,
                                   const std::vector<DistributedLoad>& distributed = {},
-                                  std::vector<PointReaction>* reactions = nullptr);
+                                  std::vector<PointReaction>* reactions = nullptr, FieldIntegrals* integrals = nullptr);
   /// Receptance w(observe) / Fz(excite) at each omega; `eta` structural loss factor. A sample
   /// at an undamped natural frequency is not finite: it is returned as NaN and counted.
   std::vector<std::complex<double>> receptance(std::array<double, 2> excite, std::array<double, 2> observe,

@@ -47,6 +47,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,9 @@ struct PrismModel {
   /// Theta_z; zero columns where the physics has no such motion) and the section's weights.
   Eigen::MatrixXd rigid_motions;
   Eigen::MatrixXd section_weights;  ///< m x m diagonal: A_i on translations, I_i on rotations
+  /// Plate with a long edge that holds something: the same model with both long edges free (their
+  /// lines' fields all present), whose energy rows for the held fields give the edges' reactions.
+  std::shared_ptr<const PrismModel> free_long_edges;
 
   // Eq. (32) in the paper's form (A20 needs every strain deformable: throws otherwise).
   Eigen::MatrixXd A02() const { return M; }
