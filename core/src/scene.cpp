@@ -192,6 +192,10 @@ std::vector<std::string> free_plate_rigid_motions(const Scene& s) {
     if (sp->translational > 0) add(1.0, 0.0, y), add(0.0, 1.0, 0.0);
     if (sp->rotational > 0) add(0.0, 0.0, 1.0);
   }
+  for (const PointSupport& p : s.point_supports) {
+    if (p.support.translational > 0) add(1.0, p.x, p.y);                       // w = 0 there
+    if (p.support.rotational > 0) add(0.0, 1.0, 0.0), add(0.0, 0.0, 1.0);      // both slopes
+  }
   // The free motions span the null space of the rows; name its basis.
   Eigen::MatrixXd N = Eigen::MatrixXd::Identity(3, 3);
   if (rows.rows() > 0) {

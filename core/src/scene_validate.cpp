@@ -124,6 +124,8 @@ void validate(const Scene& s) {
       if (!std::isfinite(v)) r.fail(fmt::format("loads[{}]", i), "values must be finite");
     check_range(r, fmt::format("loads[{}].x", i), p.x, 0.0, s.geometry.length);
     if (s.is_plate()) check_range(r, fmt::format("loads[{}].y", i), p.y, 0.0, s.geometry.width);
+    if (s.is_plate() && (p.Fx != 0 || p.Fy != 0 || p.Mz != 0))
+      r.fail(fmt::format("loads[{}]", i), "a plate in bending takes Fz, Mx and My (no in-plane Fx, Fy, Mz)");
   }
   if (s.request.modes < 0) r.fail("request.modes", "must be >= 0");
 }

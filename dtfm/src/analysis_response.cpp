@@ -196,14 +196,28 @@ std::vector<std::optional<SegmentLoad>> segment_loads(const LineAnalysis::ClassL
     g.tail(mc) = -(c.W.transpose() * density(model, distributed, xx, inside) / c.sigma);
     return g;
   };
+  // Segments of one length and load (a plate's base pieces under a pressure) share their segment
+  // stiffness and particular solution: each is an exponential of a 2 mc matrix.
+  std::map<std::pair<int, long long>, Eigen::MatrixXd> stiffness;
+  std::map<std::vector<double>, Eigen::VectorXd> particulars;
+  const double L = x.empty() ? 1.0 : x.back();
   for (int i = 0; i + 1 < nn; ++i) {
     const double xa = x[static_cast<std::size_t>(i)], xb = x[static_cast<std::size_t>(i) + 1], h = xb - xa;
     const Eigen::VectorXd ga = g_at(xa, xb), gb = g_at(xb, xa);
     if (ga.norm() == 0.0 && gb.norm() == 0.0) continue;
     SegmentLoad ld{ga, (gb - ga) / h};
-    const Eigen::MatrixXd A = c.state(0.0, c.piece_of(xa, xb));
-    const Eigen::VectorXd yp = particular(A, ld, h);
-    const Eigen::MatrixXd K = segment_k(A, h, 0).K;
+    const int piece = c.piece_of(xa, xb);
+    const long long hkey = std::llround(h / (1e-12 * L));
+    const Eigen::MatrixXd A = c.state(0.0, piece);
+    std::vector<double> key = {static_cast<double>(piece), static_cast<double>(hkey)};
+    key.insert(key.end(), ld.g0.data(), ld.g0.data() + ld.g0.size());
+    key.insert(key.end(), ld.g1.data(), ld.g1.data() + ld.g1.size());
+    auto pit = particulars.find(key);
+    if (pit == particulars.end()) pit = particulars.emplace(std::move(key), particular(A, ld, h)).first;
+    const Eigen::VectorXd& yp = pit->second;
+    auto kit = stiffness.find({piece, hkey});
+    if (kit == stiffness.end()) kit = stiffness.emplace(std::make_pair(piece, hkey), segment_k(A, h, 0).K).first;
+    const Eigen::MatrixXd& K = kit->second;
     // Held at both nodes: the homogeneous part takes d(h) = -d_p(h), so F(a+) = K_ab d_p(h) and
     // F(b-) = f_p(h) - K_bb d_p(h); the nodes carry [F(a+); -F(b-)].
     Eigen::VectorXd fa = K.topRightCorner(mc, mc) * yp.head(mc);

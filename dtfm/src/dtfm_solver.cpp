@@ -78,12 +78,8 @@ void add_plate_reactions(const Scene& s, const PrismModel& model, const FieldInt
 
 }  // namespace
 
-Capability DtfmSolver::supports(const Scene& s) const {
+Capability DtfmSolver::supports(const Scene&) const {
   Capability c;
-  if (s.is_plate() && (!s.point_supports.empty() || !s.masses.empty())) {
-    c.reason = "dtfm does not yet model supports or masses at points of a plate (its strips run from edge to edge)";
-    return c;
-  }
   c.modes = c.statics = c.frf = true;
   return c;
 }

@@ -16,6 +16,7 @@
 // from the field integrals of the solve (FieldIntegrals). The forces of the short edges' end
 // conditions on the held line (a corner) are part of it: the corners go to the long edges. Springs
 // along an edge exert -k w per unit length.
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 #include <utility>
@@ -74,6 +75,38 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> load_integrals(const Scene& s, const
   return {p0, p1};
 }
 
+/// The supports at points at x from the generalized forces of their node: each acts through the
+/// spread of a point action at its (x, y) (PrismModel::load_vector: Fz, Mx, My on its two strip
+/// lines), so the forces are S lambda with S the spreads of the components it restrains.
+void add_point_reactions(const Scene& s, const PrismModel& m, double x, const Eigen::VectorXd& F,
+                         std::vector<Reaction>& out) {
+  std::vector<std::pair<std::size_t, int>> cols;  // (support, component 0: Fz, 1: Mx, 2: My)
+  for (std::size_t i = 0; i < s.point_supports.size(); ++i) {
+    const PointSupport& p = s.point_supports[i];
+    if (std::abs(p.x - x) > 1e-12 * m.length) continue;
+    if (p.support.translational > 0) cols.emplace_back(i, 0);
+    if (p.support.rotational > 0) cols.emplace_back(i, 1), cols.emplace_back(i, 2);
+  }
+  if (cols.empty()) return;
+  Eigen::MatrixXd S(m.m, static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    PointLoad unit;
+    unit.y = s.point_supports[cols[c].first].y;
+    (cols[c].second == 0 ? unit.Fz : cols[c].second == 1 ? unit.Mx : unit.My) = 1.0;
+    S.col(static_cast<Eigen::Index>(c)) = m.load_vector(unit);
+  }
+  const Eigen::VectorXd lambda = S.colPivHouseholderQr().solve(F);
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    const PointSupport& p = s.point_supports[cols[c].first];
+    const std::string name = "points[" + std::to_string(cols[c].first) + "]";
+    auto it = std::find_if(out.begin(), out.end(), [&](const Reaction& r) { return r.support == name; });
+    if (it == out.end()) it = out.insert(out.end(), Reaction{name, {p.x, p.y}, {0, 0, 0}, {0, 0, 0}});
+    const double v = lambda[static_cast<Eigen::Index>(c)];
+    if (cols[c].second == 0) it->force[2] = v;
+    else it->moment[static_cast<std::size_t>(cols[c].second - 1)] = v;
+  }
+}
+
 }  // namespace
 
 std::vector<Reaction> plate_reactions(const Scene& s, const PrismModel& m, const FieldIntegrals& fi) {
@@ -81,6 +114,10 @@ std::vector<Reaction> plate_reactions(const Scene& s, const PrismModel& m, const
   const double a = s.geometry.length, b = s.geometry.width;
   for (const auto& [x, F] : fi.node_forces) {
     const bool at0 = std::abs(x) <= 1e-12 * a, atL = std::abs(x - a) <= 1e-12 * a;
+    if (!at0 && !atL) {
+      add_point_reactions(s, m, x, F, out);
+      continue;
+    }
     if (!(at0 && !s.x0.is_free()) && !(atL && !s.xL.is_free())) continue;
     const std::array<double, 3> r = section_resultant(m, F, b / 2);
     out.push_back({at0 ? "x0" : "xL", {x, b / 2}, {0, 0, r[0]}, {r[1], r[2], 0}});

@@ -100,9 +100,12 @@ Eigen::VectorXd PrismModel::load_vector(const PointLoad& load) const {
     int j0;
     double t;
     plate_bracket(*this, load.y, j0, t);
-    const int k0 = field(j0, Uz), k1 = field(j0 + 1, Uz);
-    if (k0 >= 0) f[k0] += (1.0 - t) * load.Fz;
-    if (k1 >= 0) f[k1] += t * load.Fz;
+    // Fz on w, Mx on theta_x, My on theta_y of the two lines, as section_response interpolates them.
+    for (const auto& [dof, value] : {std::pair{Uz, load.Fz}, std::pair{Rx, load.Mx}, std::pair{Ry, load.My}}) {
+      const int k0 = field(j0, dof), k1 = field(j0 + 1, dof);
+      if (k0 >= 0) f[k0] += (1.0 - t) * value;
+      if (k1 >= 0) f[k1] += t * value;
+    }
     return f;
   }
   Vector6d F;
@@ -181,7 +184,9 @@ PrismModel build_model(const Scene& scene, const Discretization& mesh, const Mod
       bad("the dtfm plate mesh is the number of strips across the width, e.g. 10 (got '" + mesh.spec() + "')");
     const int n = mesh.counts[0];
     if (n < 2 || n > 400) bad("the number of strips must lie in [2, 400] (got " + std::to_string(n) + ")");
-    return detail::build_plate(scene, n, options);
+    PrismModel mdl = detail::build_plate(scene, n, options);
+    detail::add_points(mdl, scene);
+    return mdl;
   }
   int ny = 0, nz = 0;
   if (mesh.counts.size() == 1) ny = nz = mesh.counts[0];

@@ -15,10 +15,11 @@ namespace {
 /// The field pattern of each unit section resultant (m x 6, columns Fx, Fy, Fz, Mx, My, Mz): how a
 /// point load spreads over the prisms. Its transpose maps the fields to the section's resultant
 /// motion (the work conjugate), on which supports and masses at points act.
-Eigen::MatrixXd resultant_spread(const PrismModel& mdl) {
+Eigen::MatrixXd resultant_spread(const PrismModel& mdl, double y) {
   Eigen::MatrixXd S(mdl.m, 6);
   for (int d = 0; d < 6; ++d) {
     PointLoad unit;
+    unit.y = y;  // a plate's point (its two strip lines); a beam's axis
     double* comp[6] = {&unit.Fx, &unit.Fy, &unit.Fz, &unit.Mx, &unit.My, &unit.Mz};
     *comp[d] = 1.0;
     S.col(d) = mdl.load_vector(unit);
@@ -62,11 +63,28 @@ void add_to(EndCondition& e, const Eigen::MatrixXd& spread, const std::array<dou
   for (int d : massive) e.mass += mass[d] * spread.col(d) * spread.col(d).transpose();
 }
 
+/// A plate with points: points off its middle line break the reflection y -> b - y (one class
+/// then), and held points restrain rigid motions (springs make them near-rigid: -1).
+void plate_points_done(PrismModel& mdl, const Scene& s) {
+  bool symmetric = true, spring = mdl.rigid_body_motions < 0;
+  const double b = s.geometry.width;
+  for (const PointSupport& p : s.point_supports) {
+    symmetric = symmetric && std::abs(p.y - b / 2) <= 1e-12 * b;
+    for (double k : {p.support.translational, p.support.rotational}) spring = spring || (k != 0.0 && !std::isinf(k));
+  }
+  for (const PointMass& p : s.masses) symmetric = symmetric && std::abs(p.y - b / 2) <= 1e-12 * b;
+  if (!symmetric && !mdl.reflections.empty()) {
+    mdl.reflections.clear();
+    mdl.classes.clear();
+    build_classes(mdl, {ModeFamily::Plate}, {});
+  }
+  mdl.rigid_body_motions = spring ? -1 : static_cast<int>(free_plate_rigid_motions(s).size());
+}
+
 }  // namespace
 
 void add_points(PrismModel& mdl, const Scene& s) {
   if (s.point_supports.empty() && s.masses.empty()) return;
-  const Eigen::MatrixXd spread = resultant_spread(mdl);
   const double L = mdl.length;
   auto condition_at = [&](double x) -> EndCondition& {
     if (std::abs(x) <= 1e-12 * L) return mdl.ends[0];
@@ -84,17 +102,24 @@ void add_points(PrismModel& mdl, const Scene& s) {
   for (std::size_t i = 0; i < s.point_supports.size(); ++i) {
     const Support& sp = s.point_supports[i].support;
     EndCondition& e = condition_at(s.point_supports[i].x);
-    add_to(e, spread, {sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational, sp.rotational}, none);
+    // A beam's section: axial, both translations, twist, both bending rotations; a plate's point:
+    // w and both rotations (a pinned point holds w only: its twist is a beam's).
+    const std::array<double, 6> k =
+        mdl.kind == SceneKind::Plate
+            ? std::array<double, 6>{0, 0, sp.translational, sp.rotational, sp.rotational, 0}
+            : std::array<double, 6>{sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational, sp.rotational};
+    add_to(e, resultant_spread(mdl, s.point_supports[i].y), k, none);
     e.text += fmt::format("{}points[{}]: {}", e.text.empty() ? "" : "; ", i, sp.kind);
   }
   for (std::size_t i = 0; i < s.masses.size(); ++i) {
     const PointMass& pm = s.masses[i];
     EndCondition& e = condition_at(pm.x);
-    add_to(e, spread, none, {pm.mass, pm.mass, pm.mass, pm.Jx, pm.Jy, pm.Jz});
+    add_to(e, resultant_spread(mdl, pm.y), none, {pm.mass, pm.mass, pm.mass, pm.Jx, pm.Jy, pm.Jz});
     e.text += fmt::format("{}masses[{}]: {:g} kg", e.text.empty() ? "" : "; ", i, pm.mass);
   }
   std::sort(mdl.points.begin(), mdl.points.end(),
             [](const PointCondition& a, const PointCondition& b) { return a.x < b.x; });
+  if (mdl.kind == SceneKind::Plate) plate_points_done(mdl, s);
 }
 
 Scene piece_scene(const Scene& s, const Segment& piece) {

@@ -474,6 +474,11 @@ Capability ExactSolver::supports(const Scene& s) const {
   if (!c.statics)
     c.reason = (why.empty() ? "" : why + "; ") +
                "exact plate statics and FRF only for a simply supported Kirchhoff plate (Navier)";
+  for (const PointLoad& p : s.loads)
+    if (c.statics && (p.Mx != 0 || p.My != 0)) {
+      c.statics = false;
+      c.reason = "exact's plate series take forces, not point moments (loads[].Mx, My); rfem models them";
+    }
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include "modalbench/rfem/analysis.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <Eigen/SparseQR>
 
 #include <fmt/format.h>
 
@@ -157,23 +158,38 @@ Eigen::VectorXd multipliers(const Model& m, const detail::RigidRows& rows, const
   return y;
 }
 
-/// Where every column of the builder's basis that a hold touches is a point's w and the holds pin
-/// each of them (as many independent holds as columns touched: a Kirchhoff plate's held edges in
-/// corner-value coordinates), the held reactions need no multipliers: the force at each pinned
-/// point is the generalized reaction -r0 there, unique whatever the holds' redundancy (an edge's
-/// 2 (n + 1) holds pin its n + 2 values). A point pinned by the holds of several SDEs (a corner,
-/// held by two edges) gives each an equal share. Per SDE (global axes, about its point); nothing
-/// where the columns are not pinned so.
-std::optional<std::map<int, SupportForce>> pinned_point_forces(const Model& m, const System& sys,
-                                                               const detail::RigidRows& rows, const SpMat& At,
-                                                               const Eigen::VectorXd& r0, double scale,
-                                                               double& residual) {
+/// Where the holds of the edges pin the columns of the builder's basis they touch, each a point's w
+/// (as many independent edge holds as columns touched: a Kirchhoff plate's held edges in corner-value
+/// coordinates), their reactions need no multipliers: the force at each pinned point is the
+/// generalized reaction -r0 there, unique whatever the holds' redundancy (an edge's 2 (n + 1) holds
+/// pin its n + 2 values). A point pinned by the holds of several SDEs (a corner, held by two edges)
+/// gives each an equal share. The holds of supports at points then take the rest by their
+/// multipliers (least squares over the columns not pinned). Per SDE, held components only (global
+/// axes, about its point); nothing where the edges do not pin their columns.
+std::optional<std::map<int, SupportForce>> pinned_point_forces(const Model& m, const detail::RigidRows& rows,
+                                                               const SpMat& Ah, const Eigen::VectorXd& r0,
+                                                               double scale, double& residual) {
   if (m.basis_points.empty() || !rows.links.empty() || rows.holds.empty()) return std::nullopt;
-  std::map<long, std::set<int>> pinned_by;  // column -> SDEs whose holds touch it
-  for (long h = 0; h < At.cols(); ++h)
-    for (SpMat::InnerIterator it(At, h); it; ++it)
-      if (it.value() != 0.0) pinned_by[it.row()].insert(rows.hold_origin[static_cast<std::size_t>(h)].first);
-  if (static_cast<long>(pinned_by.size()) != sys.held) return std::nullopt;
+  std::map<int, std::string> name_of;
+  for (const auto& [sde, name] : m.supports) name_of[sde] = name;
+  std::vector<long> edge_holds, point_holds;
+  for (long h = 0; h < Ah.cols(); ++h) {
+    const auto it = name_of.find(rows.hold_origin[static_cast<std::size_t>(h)].first);
+    if (it == name_of.end()) return std::nullopt;  // a hold that stands for no scene support
+    (it->second.rfind("points[", 0) == 0 ? point_holds : edge_holds).push_back(h);
+  }
+  std::map<long, std::set<int>> pinned_by;  // column -> SDEs whose edge holds touch it
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t k = 0; k < edge_holds.size(); ++k)
+    for (SpMat::InnerIterator it(Ah, edge_holds[k]); it; ++it) {
+      pinned_by[it.row()].insert(rows.hold_origin[static_cast<std::size_t>(edge_holds[k])].first);
+      t.emplace_back(it.row(), static_cast<long>(k), it.value());
+    }
+  SpMat Ae(Ah.rows(), static_cast<long>(edge_holds.size()));
+  Ae.setFromTriplets(t.begin(), t.end());
+  Ae.makeCompressed();
+  Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>> qr(Ae);
+  if (qr.info() != Eigen::Success || static_cast<std::size_t>(qr.rank()) != pinned_by.size()) return std::nullopt;
   std::map<int, SupportForce> out;
   for (const auto& [sde, name] : m.supports) out[sde].sde = sde;
   Eigen::VectorXd rest = r0;
@@ -182,10 +198,35 @@ std::optional<std::map<int, SupportForce>> pinned_point_forces(const Model& m, c
     const Eigen::Vector3d F(0, 0, -r0[col] / static_cast<double>(sdes.size()));
     const Eigen::Vector3d& P = m.basis_points[static_cast<std::size_t>(col)];
     for (int sde : sdes) {
-      auto it = out.find(sde);
-      if (it == out.end()) return std::nullopt;  // a hold that stands for no scene support
-      it->second.force += F;
-      it->second.moment += (P - m.sdes[static_cast<std::size_t>(sde)].point).cross(F);
+      out[sde].force += F;
+      out[sde].moment += (P - m.sdes[static_cast<std::size_t>(sde)].point).cross(F);
+    }
+  }
+  if (!point_holds.empty()) {
+    std::map<long, long> slot;  // the unpinned columns the point holds touch
+    for (long h : point_holds)
+      for (SpMat::InnerIterator it(Ah, h); it; ++it)
+        if (!pinned_by.count(it.row())) slot.emplace(it.row(), 0);
+    long k = 0;
+    for (auto& [col, i] : slot) i = k++;
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(k, static_cast<long>(point_holds.size()));
+    Eigen::VectorXd g(k);
+    for (std::size_t j = 0; j < point_holds.size(); ++j)
+      for (SpMat::InnerIterator it(Ah, point_holds[j]); it; ++it)
+        if (auto sl = slot.find(it.row()); sl != slot.end()) G(sl->second, static_cast<long>(j)) = it.value();
+    for (const auto& [col, i] : slot) g[i] = rest[col];
+    const Eigen::VectorXd lambda = G.completeOrthogonalDecomposition().solve(g);
+    const Eigen::VectorXd Gl = G * lambda;
+    for (const auto& [col, i] : slot) rest[col] -= Gl[i];
+    std::map<int, Vector6d> local;
+    for (std::size_t j = 0; j < point_holds.size(); ++j) {
+      const auto [sde, c] = rows.hold_origin[static_cast<std::size_t>(point_holds[j])];
+      local.try_emplace(sde, Vector6d::Zero()).first->second[c] = -lambda[static_cast<long>(j)];
+    }
+    for (auto& [sde, F] : local) {
+      const Sde& sd = m.sdes[static_cast<std::size_t>(sde)];
+      out[sde].force += sd.axes * F.head<3>();
+      out[sde].moment += sd.axes * F.tail<3>();
     }
   }
   residual = scale > 0 ? rest.norm() / scale : 0.0;
@@ -228,7 +269,7 @@ SupportForces support_forces(const Model& m, const System& sys, const Eigen::Vec
     const double scale = std::max(f0.norm(), r0.norm());
     // The holds' columns alone (pinned_point_forces runs only where there are no links).
     const SpMat Ah = At.rightCols(static_cast<long>(rows.holds.size()));
-    if (auto pinned = pinned_point_forces(m, sys, rows, Ah, r0, scale, out.residual)) held = std::move(*pinned);
+    if (auto pinned = pinned_point_forces(m, rows, Ah, r0, scale, out.residual)) held = std::move(*pinned);
     else held = multiplier_forces(m, rows, At, r0, scale, out.residual);
     if (!std::isfinite(out.residual)) return out;
   }
