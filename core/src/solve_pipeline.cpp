@@ -95,6 +95,10 @@ class SolvePipeline {
   std::vector<std::string> estimate_warnings_;
   std::string refined_note_;
   double estimate_time_ = 0;
+  /// The run time the request was planned at: the first estimate, then each refinement step's
+  /// prediction (calibrated on the solves before it).
+  double planned_s_ = 0;
+  void compare_time_with_plan();
   KeptSolves kept_;
 };
 
@@ -188,6 +192,7 @@ bool SolvePipeline::estimate_resources() {
     }
   if (est.bytes > 0) sum.set_diagnostic("estimated_memory_bytes", est.bytes);
   if (est.seconds > 0) sum.set_diagnostic("estimated_time_s", est.seconds);
+  planned_s_ = est.seconds;
   memory_limit_ = opt_.max_memory_bytes > 0 ? opt_.max_memory_bytes : default_memory_limit();
   if (est.bytes > memory_limit_)
     sum.raise(Status::ResourceLimit,
@@ -297,6 +302,7 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
     return false;
   }
   const double ratio = static_cast<double>(next->counts[0]) / final_mesh_.counts[0];
+  planned_s_ += predicted;
   Result trial = solve_light(light_, *next);
   // A finer mesh whose solve fails the back-end's own checks is not taken: the mesh kept is the
   // last one that passed them, with its estimate (and its not-converged verdict).
@@ -447,6 +453,25 @@ void SolvePipeline::finish() {
     result_.mode_families.resize(result_.frequencies_rad_s.size(), ModeFamily::Unknown);
   if (sum.diagnostic("estimated_memory_bytes") > 0) sum.set_diagnostic("process_peak_resident_bytes", peak_resident_bytes());
   sum.total_time_s = since_start();
+  compare_time_with_plan();
+}
+
+/// The run time against the plan: the plan (first estimate plus the refinement's predictions) is
+/// reported, and a run more than 3 times longer says so, with what the estimate covered: a
+/// back-end's cost model that misses is then seen, not hidden behind a refusal threshold.
+void SolvePipeline::compare_time_with_plan() {
+  auto& sum = result_.summary;
+  if (!(planned_s_ > 0)) return;
+  sum.set_diagnostic("estimated_time_planned_s", planned_s_);
+  const double t = sum.total_time_s;
+  if (t > 3.0 * planned_s_ && t > 1.0)
+    sum.warnings.push_back(fmt::format(
+        "run time {:.3g} s, {:.0f} times the estimate of {:.3g} s ({}): {}'s cost model underestimates this "
+        "request; --max-time judges the estimate, not the run",
+        t, t / planned_s_, planned_s_,
+        final_mesh_.spec() != mesh_.spec() ? fmt::format("the first mesh {} and the refinement to {}", mesh_.spec(), final_mesh_.spec())
+                                           : fmt::format("mesh {} with its error estimate", mesh_.spec()),
+        solver_.name()));
 }
 
 }  // namespace detail

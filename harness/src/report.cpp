@@ -78,12 +78,16 @@ void write_other_quantities(Doc& doc, const SceneComparison& c) {
 void write_summary(Doc& doc, const std::vector<SceneComparison>& all) {
   doc.heading(2, "Summary: how fast each method converges to its own model, and how far that model is from the best reference",
               "summary");
-  doc.para("Per scene and method: the time to 1 %, 0.1 %, 0.01 % and 0.001 % discretization error on the first 6 frequencies "
-           "-- the time of the modes alone (model build + eigen solve) of the cheapest rung of the method's ladder that "
-           "reaches it, against the method's own converged limit (the exact solution where its model tends to the "
-           "scene's theory, else the Richardson limit of its ladder) --, the observed order, and the model error: that "
-           "limit against the best reference of the scene, ± the sum of both GCIs. Cheapest at: of the methods whose "
-           "model error is within the target, the one that reaches that discretization error in the least time.");
+  doc.para("Each table below has one row per method of a scene. Read it with these definitions:");
+  doc.list({"Converges to: the method's own limit. It is the exact solution where the method's model tends to the "
+            "scene's theory, else the Richardson limit of its ladder of meshes.",
+            "1 % … 0.001 % [s]: the time to that discretization error on the first 6 frequencies. It is the time of "
+            "the modes alone (model build and eigen solve) on the cheapest mesh that reaches it.",
+            "Observed order: how fast the frequencies converge as the mesh is refined.",
+            "Model error [%]: how far the method's limit lies from the best reference of the scene. Its ± is the sum "
+            "of both grid convergence indices; where that exceeds the value, the model error is not determined.",
+            "Cheapest at: the accuracies at which this method is the fastest of those whose model error is within "
+            "the target."});
   constexpr int kTargets = 4;
   const double targets[kTargets] = {1e-2, 1e-3, 1e-4, 1e-5};
   for (const auto& c : all) {
@@ -115,7 +119,7 @@ void write_summary(Doc& doc, const std::vector<SceneComparison>& all) {
     doc.heading(3, c.scene.name);
     doc.para("Best reference: " + c.best_label + ".");
     doc.table({"method", "converges to", "1 % [s]", "0.1 % [s]", "0.01 % [s]", "0.001 % [s]", "observed order",
-               "model error", "cheapest at"},
+               "model error [%]", "cheapest at"},
               rows, 2);
     write_other_quantities(doc, c);
   }

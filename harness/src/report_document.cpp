@@ -47,9 +47,11 @@ std::string secs_str(double t) { return std::isfinite(t) ? fmt::format("{:.3g}",
 
 std::string model_error_str(const ModelLimit& lim) {
   if (!std::isfinite(lim.model_error)) return "—";
-  std::string v = lim.model_error == 0 ? "0" : fmt::format("{:.1e}", lim.model_error);
-  if (std::isfinite(lim.model_error_uncertainty) && lim.model_error_uncertainty > 0)
-    v += fmt::format(" ± {:.1e}", lim.model_error_uncertainty);
+  const double u = lim.model_error_uncertainty;
+  // An uncertainty beyond the value leaves no information in the value: said, not printed.
+  if (std::isfinite(u) && u > lim.model_error) return fmt::format("not determined (± {:.2g} %)", 100 * u);
+  std::string v = lim.model_error == 0 ? "0 %" : fmt::format("{:.2g} %", 100 * lim.model_error);
+  if (std::isfinite(u) && u > 0) v += fmt::format(" ± {:.2g} %", 100 * u);
   return v;
 }
 

@@ -13,6 +13,32 @@ namespace modalbench::report_detail {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// One colour and marker per method across the whole report, whatever the plot and its other
+/// series: keyed by the series' method (its title's first word: a back-end, a CalculiX element
+/// family, or "reference", drawn black and dashed).
+std::string method_style(const std::string& title) {
+  const std::string key = title.substr(0, title.find(' '));
+  struct Style {
+    const char* key;
+    const char* colour;
+    int marker;
+  };
+  static const Style fixed[] = {{"reference", "#000000", 0}, {"exact", "#000000", 6},     {"rfem", "#1f77b4", 7},
+                                {"dtfm", "#ff7f0e", 5},      {"difference_eq", "#2ca02c", 9}};
+  for (const Style& f : fixed)
+    if (key == f.key) return fmt::format("lc rgb '{}' pt {}{}", f.colour, f.marker, key == "reference" ? " dt 2" : "");
+  // Others (CalculiX elements, limits named by a back-end and a theory): a fixed hash of the name.
+  static const char* colours[] = {"#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  static const int markers[] = {11, 13, 4, 8, 10, 12, 14};
+  unsigned h = 2166136261u;
+  for (char ch : key) h = (h ^ static_cast<unsigned char>(ch)) * 16777619u;
+  return fmt::format("lc rgb '{}' pt {}", colours[h % 7], markers[(h / 7) % 7]);
+}
+
+}  // namespace
+
 std::string plot(Context& ctx, const std::string& name, const std::string& setup, const std::vector<Series>& series) {
   std::vector<const Series*> used;
   for (const auto& s : series)
@@ -32,7 +58,8 @@ std::string plot(Context& ctx, const std::string& name, const std::string& setup
     std::string title = used[i]->title;
     std::replace(title.begin(), title.end(), '\'', ' ');
     std::replace(title.begin(), title.end(), '_', '-');
-    cmd += fmt::format("{}'{}' using 1:2 with {} lw 2 title '{}'", i ? ", " : "", dat.string(), used[i]->style, title);
+    cmd += fmt::format("{}'{}' using 1:2 with {} lw 2 {} title '{}'", i ? ", " : "", dat.string(), used[i]->style,
+                       method_style(used[i]->title), title);
   }
   cmd += "\n";
   const fs::path gp = pdir / (name + ".gp");

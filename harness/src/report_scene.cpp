@@ -83,37 +83,54 @@ void write_limits_table(Doc& doc, const SceneComparison& c) {
   for (const auto& lim : c.limits)
     rows.push_back({lim.label, lim.source, order(lim.order[0]), order(lim.order[1]), order(lim.order[2]),
                     lim.source == "exact"  ? "0 (exact)"
-                    : std::isfinite(lim.gci) ? fmt::format("{} (Fs {:g})", err_str(lim.gci), lim.safety_factor)
+                    : std::isfinite(lim.gci) ? fmt::format("{:.2g} % (Fs {:g})", 100 * lim.gci, lim.safety_factor)
                                              : "—",
                     model_error_str(lim), lim.convergence_note});
   doc.heading(3, "Converged models: observed order, GCI and model error");
   doc.para("Best reference: " + c.best_label + ". Observed orders per quantity (frequencies: median over the first "
            "modes); GCI: Roache's grid convergence index of the finest frequency, relative, safety factor Fs = 1.25 when a "
            "fourth mesh confirms the order, else 3.");
-  doc.table({"method", "converges to", "order (freq.)", "order (defl.)", "order (FRF)", "GCI", "model error", "note"}, rows, 2);
+  doc.table({"method", "converges to", "order (freq.)", "order (defl.)", "order (FRF)", "GCI [%]", "model error [%]", "note"},
+            rows, 2);
 }
 
 void write_runs_table(Doc& doc, const SceneComparison& c) {
   std::vector<std::vector<std::string>> rows;
+  // Messages and warnings as numbered notes below the table (a long one in a cell made every row
+  // of the table hundreds of pixels tall); a run's notes are numbered once, equal texts share one.
+  std::vector<std::string> notes;
+  auto note = [&](const std::string& text) {
+    const auto it = std::find(notes.begin(), notes.end(), text);
+    if (it != notes.end()) return static_cast<int>(it - notes.begin()) + 1;
+    notes.push_back(text);
+    return static_cast<int>(notes.size());
+  };
   for (const auto& r : c.runs) {
     const auto& s = r.result.summary;
-    std::string msg = s.message;
-    if (msg.empty() && !s.warnings.empty()) msg = fmt::format("{} warning(s): {}", s.warnings.size(), s.warnings.front());
-    if (r.matched_by_order && !r.paired_by_mac) msg = "modes matched by order (no family labels). " + msg;
-    if (r.low_mac_pairs > 0) msg = fmt::format("{} pair(s) with MAC < {}. ", r.low_mac_pairs, kLowMac) + msg;
+    std::vector<std::string> texts;
+    if (r.low_mac_pairs > 0) texts.push_back(fmt::format("{} mode pair(s) with MAC < {}", r.low_mac_pairs, kLowMac));
+    if (r.matched_by_order && !r.paired_by_mac) texts.push_back("modes matched by order (no family labels)");
+    if (!s.message.empty()) texts.push_back(s.message);
+    for (const auto& w : s.warnings) texts.push_back(w);
+    std::string refs;
+    for (const auto& t : texts) refs += fmt::format("{}[{}]", refs.empty() ? "" : " ", note(t));
     rows.push_back({r.limit.empty() ? r.backend : r.limit, r.mesh.spec(), std::to_string(s.unknowns), to_string(s.status),
                     secs_str(r.time_s.modes), secs_str(r.time_s.statics), secs_str(r.time_s.frf), std::to_string(r.repeats),
                     err_str(r.disc_frequency_error), err_str(r.disc_deflection_error),
                     std::isfinite(r.disc_frf_error_db) ? fmt::format("{:.2g}", r.disc_frf_error_db) : "—",
-                    err_str(r.max_frequency_error), msg.substr(0, 160)});
+                    err_str(r.max_frequency_error), refs});
   }
   doc.heading(3, "Runs");
-  doc.para("Times: median of each quantity solved alone (modes / statics / FRF). Discretization errors against the "
-           "run's own converged model; the last error column is the difference of the frequencies from the scene's "
-           "reference (" + c.reference.source + "), which adds the model error where the run's model is another.");
+  doc.para("Times are medians of each quantity solved alone (modes, statics, FRF).");
+  doc.para("Discretization errors are relative, against the run's own converged model.");
+  doc.para("The last error column compares the frequencies with the scene's reference (" + c.reference.source +
+           "): it adds the model error where the run's model is another.");
   doc.table({"method", "mesh", "unknowns", "status", "modes [s]", "statics [s]", "FRF [s]", "repeats", "freq. disc. error",
-             "defl. disc. error", "FRF disc. error [dB]", "freq. vs reference", "message"},
+             "defl. disc. error", "FRF disc. error [dB]", "freq. vs reference", "notes"},
             rows);
+  std::vector<std::string> numbered;
+  for (std::size_t i = 0; i < notes.size(); ++i) numbered.push_back(fmt::format("[{}] {}", i + 1, notes[i]));
+  doc.list(numbered);
 }
 
 /// The reference beside the finest run of each back-end.
