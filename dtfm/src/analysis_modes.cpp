@@ -112,12 +112,27 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
     return fail(e.what());
   }
   // The rigid amplitudes' mass (class units: the kinetic energy is int d^T M d dx and the point
-  // masses'), over the free amplitudes.
+  // masses'), over the free amplitudes and then the unrestrained ones (true rigid modes). A
+  // near-rigid mode is M-orthogonal to those: with K zero on them, its equations over them give
+  // M_uf a_f + M_uu a_u = 0, so its mass is the Schur complement M_ff - M_fu M_uu^-1 M_uf (a rigid
+  // bar on one end spring rocks about its centre of percussion: omega = 2 sqrt(k / m), not
+  // sqrt(k / m)).
   const Eigen::MatrixXd Mall = rl->mass();
-  Eigen::MatrixXd Mr(rf, rf);
-  for (Eigen::Index p = 0; p < rf; ++p)
-    for (Eigen::Index q = 0; q < rf; ++q)
-      Mr(p, q) = Mall(rl->free_a[static_cast<std::size_t>(p)], rl->free_a[static_cast<std::size_t>(q)]);
+  std::vector<int> amp(rl->free_a.begin(), rl->free_a.end());
+  for (int a = 0; a < static_cast<int>(rl->anchors.size()); ++a)
+    if (!std::isinf(rl->anchors[static_cast<std::size_t>(a)].k) &&
+        std::find(rl->free_a.begin(), rl->free_a.end(), a) == rl->free_a.end())
+      amp.push_back(a);
+  const Eigen::Index ra = static_cast<Eigen::Index>(amp.size());
+  auto schur = [rf, ra](const Eigen::MatrixXd& M) -> Eigen::MatrixXd {
+    if (ra == rf) return M;
+    const Eigen::MatrixXd Muu = M.bottomRightCorner(ra - rf, ra - rf);
+    return M.topLeftCorner(rf, rf) - M.topRightCorner(rf, ra - rf) * Muu.ldlt().solve(M.bottomLeftCorner(ra - rf, rf));
+  };
+  Eigen::MatrixXd Mfull(ra, ra);
+  for (Eigen::Index p = 0; p < ra; ++p)
+    for (Eigen::Index q = 0; q < ra; ++q) Mfull(p, q) = Mall(amp[static_cast<std::size_t>(p)], amp[static_cast<std::size_t>(q)]);
+  Eigen::MatrixXd Mr = schur(Mfull);
   // The mass of the static shapes Psi - E^-1 B (the rigid motions with the line's elastic response
   // to the non-anchor springs), exactly: a segment's divided difference (K(l) - K(0)) / l at a tiny
   // l is minus the consistent mass of the static fields between its nodes. With it the Ritz values
@@ -132,13 +147,16 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
     for (int i = 0; i + 1 < nn; ++i) short_segments = short_segments && x[i + 1] - x[i] <= mesh0.h_base * (1 + 1e-9);
     if (short_segments) {
       const double ls = 1e-12 * model_.lambda_scale;
-      Eigen::MatrixXd P(static_cast<Eigen::Index>(nn) * mc, rf);
+      // Over the free amplitudes, then the unrestrained ones (no spring acts on them: their
+      // static shapes are their rigid motions).
+      Eigen::MatrixXd P(static_cast<Eigen::Index>(nn) * mc, ra);
       for (int i = 0; i < nn; ++i)
-        for (Eigen::Index q = 0; q < rf; ++q)
+        for (Eigen::Index q = 0; q < ra; ++q)
           P.block(static_cast<Eigen::Index>(i) * mc, q, mc, 1) =
-              cd.psi[static_cast<std::size_t>(i)].col(rl->free_a[static_cast<std::size_t>(q)]);
-      const Eigen::MatrixXd V = P - cd.Y;
-      Eigen::MatrixXd mg = Eigen::MatrixXd::Zero(rf, rf), mr = Eigen::MatrixXd::Zero(rf, rf);
+              cd.psi[static_cast<std::size_t>(i)].col(amp[static_cast<std::size_t>(q)]);
+      Eigen::MatrixXd V = P;
+      V.leftCols(rf) -= cd.Y;
+      Eigen::MatrixXd mg = Eigen::MatrixXd::Zero(ra, ra), mr = Eigen::MatrixXd::Zero(ra, ra);
       for (int i = 0; i + 1 < nn; ++i) {
         const int piece = rl->line.piece_of(x[i], x[i + 1]);
         const Eigen::MatrixXd A1 = rl->line.state(ls, piece), A0 = rl->line.state(0.0, piece);
@@ -159,7 +177,7 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
           mg += Vn.transpose() * e->mass_scaled * Vn;
           mr += Pn.transpose() * e->mass_scaled * Pn;
         }
-      if (mg.allFinite() && (mr - Mr).norm() <= 1e-9 * Mr.norm()) Mg = 0.5 * (mg + mg.transpose());
+      if (mg.allFinite() && (mr - Mfull).norm() <= 1e-9 * Mfull.norm()) Mg = schur(0.5 * (mg + mg.transpose()));
     }
   }
   if (Mg) Mr = *Mg;

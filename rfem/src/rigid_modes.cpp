@@ -222,13 +222,21 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ws(W);
     if (ws.info() != Eigen::Success) return out;
-    std::vector<long> held;
+    std::vector<long> held, free;
     const double held_floor = deformation_null_floor(ws.eigenvalues());
-    for (long i = 0; i < r; ++i)
-      if (ws.eigenvalues()[i] > held_floor) held.push_back(i);
+    for (long i = 0; i < r; ++i) (ws.eigenvalues()[i] > held_floor ? held : free).push_back(i);
     if (held.empty()) return out;
-    Eigen::MatrixXd E(r, static_cast<long>(held.size()));
+    Eigen::MatrixXd E(r, static_cast<long>(held.size())), F(r, static_cast<long>(free.size()));
     for (std::size_t i = 0; i < held.size(); ++i) E.col(static_cast<long>(i)) = ws.eigenvectors().col(held[i]);
+    for (std::size_t i = 0; i < free.size(); ++i) F.col(static_cast<long>(i)) = ws.eigenvectors().col(free[i]);
+    // Near-rigid modes are M-orthogonal to the free rigid ones (K is zero on those): the held
+    // combinations less their M-projection on the free ones, which deforms no spring either. The
+    // Euclidean complement alone gave a bar rocking on one end spring sqrt(1.5 k / m) for 2 sqrt(k / m).
+    if (!free.empty()) {
+      const Eigen::MatrixXd Mz = Z.transpose() * (sys.M * Z);
+      const Eigen::MatrixXd Mff = F.transpose() * Mz * F, Mfh = F.transpose() * Mz * E;
+      E -= F * Mff.ldlt().solve(Mfh);
+    }
     C = C * E;
     Z = Z * E;
     r = static_cast<long>(held.size());
