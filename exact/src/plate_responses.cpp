@@ -1,0 +1,138 @@
+// The exact back-end's plate responses (plate_responses.hpp).
+#include "plate_responses.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "modalbench/exact/plates.hpp"
+
+namespace modalbench::exact::detail {
+
+namespace {
+
+/// The edge reactions, each placed at the edge's middle: its Kirchhoff effective shear plus half of
+/// the corner force at each of its ends. A corner force 2 M_xy is the twisting moment M_xy of each
+/// edge meeting there, so this is the resultant of each edge as a hard support that holds the
+/// twisting moments (the transverse shear Q and M_xy along it), as rfem's edges do; the split of
+/// the corner forces alone would be a convention. Given where the series meets the tolerance.
+void navier_plate_reactions(const Scene& s, const std::vector<std::array<double, 3>>& forces,
+                            const std::vector<PressurePatch>& patches, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width;
+  // Exact to 1e-8 of the load at least (the series costs microseconds per term).
+  const double tol = std::min(s.request.tolerance, 1e-8);
+  const NavierReactions nr = navier_reactions(a, b, s.plate_D(), s.material.nu, forces, patches, tol);
+  r.summary.set_diagnostic("reaction_series_terms", nr.terms);
+  if (nr.tail_relative > s.request.tolerance) {
+    r.summary.warnings.push_back(fmt::format(
+        "plate reactions not given: their series at {} terms is uncertain by {:.1e} of the total load, above the "
+        "tolerance {:.1e}",
+        nr.terms, nr.tail_relative, s.request.tolerance));
+    return;
+  }
+  std::array<Reaction, 4> e = {Reaction{"x0", {0, b / 2}, {0, 0, nr.edge_force[0]}, {nr.edge_first_moment[0], 0, 0}},
+                               Reaction{"xL", {a, b / 2}, {0, 0, nr.edge_force[1]}, {nr.edge_first_moment[1], 0, 0}},
+                               Reaction{"y0", {a / 2, 0}, {0, 0, nr.edge_force[2]}, {0, -nr.edge_first_moment[2], 0}},
+                               Reaction{"yB", {a / 2, b}, {0, 0, nr.edge_force[3]}, {0, -nr.edge_first_moment[3], 0}}};
+  const std::array<std::array<double, 2>, 4> corner = {{{0, 0}, {a, 0}, {0, b}, {a, b}}};
+  for (int c = 0; c < 4; ++c) {
+    const double F = nr.corner[c] / 2;
+    for (int k : {corner[c][0] == 0 ? 0 : 1, corner[c][1] == 0 ? 2 : 3}) {
+      Reaction& x = e[static_cast<std::size_t>(k)];
+      x.force[2] += F;
+      x.moment[0] += (corner[c][1] - x.position[1]) * F;
+      x.moment[1] -= (corner[c][0] - x.position[0]) * F;
+    }
+  }
+  r.reactions.assign(e.begin(), e.end());
+}
+
+}  // namespace
+
+// Truncations: statics to m, n <= 2000, FRF to m, n <= 300; the tail estimates are checked
+// (FRF: against the static flexibility of the same pair, since |H| vanishes at anti-resonances).
+void navier_statics(const Scene& s, int terms, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
+  std::vector<std::array<double, 3>> forces;
+  for (const auto& p : s.all_point_loads()) forces.push_back({p.x, p.y, p.Fz});
+  std::vector<PressurePatch> patches;
+  for (const DistributedLoad& q : s.all_distributed_loads())
+    patches.push_back({q.from[0], q.to[0], q.from[1], q.to[1], q.qz[0]});
+  double scale = 0, worst_tail = 0;
+  const double nu = s.material.nu;
+  for (const auto& p : s.request.probes) {
+    double tail = 0, curvature_tail = 0;
+    std::array<double, 3> c{};
+    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail, patches, &c, &curvature_tail);
+    Deflection d;
+    d.position = p;
+    d.w = w[0];
+    d.theta_x = w[2];   // rotation about x: +dw/dy
+    d.theta_y = -w[1];  // rotation about y: -dw/dx
+    // The moments (result.hpp) where their series has converged to the tolerance.
+    d.forces.mx = D * (c[0] + nu * c[1]);
+    d.forces.my = D * (c[1] + nu * c[0]);
+    d.forces.mxy = D * (1 - nu) * c[2];
+    const double m_scale = std::max({std::abs(d.forces.mx), std::abs(d.forces.my), std::abs(d.forces.mxy)});
+    d.has_forces = D * (1 + std::abs(nu)) * curvature_tail <= s.request.tolerance * m_scale;
+    if (!d.has_forces) {
+      d.forces = {};
+      r.summary.warnings.push_back(fmt::format(
+          "plate moments at ({:g}, {:g}) m not given: their Navier series at {} x {} terms is uncertain by {:.1e} N*m/m "
+          "(under a point force Kirchhoff's moments are infinite)",
+          p[0], p[1], terms, terms, D * (1 + std::abs(nu)) * curvature_tail));
+    }
+    r.deflections.push_back(d);
+    worst_tail = std::max(worst_tail, tail);
+    scale = std::max(scale, std::abs(w[0]));
+  }
+  if (scale > 0 && worst_tail > s.request.tolerance * scale)
+    r.summary.raise(Status::NotConverged,
+                    fmt::format("deflections: the Navier static series truncated at {0} x {0} terms has an estimated "
+                                "relative error {1:.1e}, above the tolerance {2:.1e} ([request] tolerance): raise "
+                                "navier_static_terms",
+                                terms, worst_tail / scale, s.request.tolerance));
+  else if (scale > 0 && worst_tail > 1e-5 * scale)
+    r.summary.warnings.push_back(fmt::format(
+        "Navier static series truncated at {0} x {0} terms: estimated relative error {1:.1e}", terms, worst_tail / scale));
+  r.summary.set_diagnostic("static_series_tail_relative", scale > 0 ? worst_tail / scale : 0.0);
+  navier_plate_reactions(s, forces, patches, r);
+}
+
+void navier_frf(const Scene& s, int terms, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
+  const double rho_h = s.material.rho * s.geometry.height;
+  const auto& f = *s.request.frf;
+  double worst = 0;
+  int omitted = 0;
+  const double flex = std::abs(
+      navier_receptance(a, b, D, rho_h, 0.0, f.excite[0], f.excite[1], f.observe[0], f.observe[1], 0.0, terms));
+  for (int i = 0; i < f.points; ++i) {
+    const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
+    double tail = 0;
+    const auto rec = navier_receptance(a, b, D, rho_h, s.material.loss_factor, f.excite[0], f.excite[1],
+                                       f.observe[0], f.observe[1], w, terms, &tail);
+    if (!std::isfinite(std::abs(rec))) {  // exactly on an undamped resonance
+      ++omitted;
+      continue;
+    }
+    r.frf.push_back({w, rec});
+    worst = std::max(worst, tail);
+  }
+  r.summary.set_diagnostic("frf_series_tail_relative_to_flexibility", flex > 0 ? worst / flex : 0.0);
+  note_frf_omissions(r.summary, omitted, f.points, "the Navier series is infinite there: an undamped resonance");
+  if (flex > 0 && worst > s.request.tolerance * flex)
+    r.summary.raise(Status::NotConverged,
+                    fmt::format("FRF: the Navier series truncated at {0} x {0} terms has an estimated error up to {1:.1e} "
+                                "of the static flexibility, above the tolerance {2:.1e}: raise navier_frf_terms",
+                                terms, worst / flex, s.request.tolerance));
+  else if (flex > 0 && worst > 1e-3 * flex)
+    r.summary.warnings.push_back(fmt::format(
+        "Navier FRF series truncated at {0} x {0} terms: estimated error up to {1:.1e} of the static flexibility",
+        terms, worst / flex));
+}
+
+}  // namespace modalbench::exact::detail
