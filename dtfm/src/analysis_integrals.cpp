@@ -60,9 +60,8 @@ void integrate_fields(const LineAnalysis::ClassLine& c, const std::vector<double
     return v;
   };
   std::map<std::pair<int, long long>, SegmentTransfer> transfer;  // by piece and length (in 1e-12 L)
-  // The particular solutions at the Gauss points, by segment length and load (plates: one per patch).
-  std::map<std::pair<long long, const SegmentLoad*>, std::array<Eigen::VectorXd, kPoints + 1>> part;
-  std::map<std::vector<double>, const SegmentLoad*> same_load;
+  // The particular solutions at the Gauss points and at h, by piece, segment length and load.
+  std::map<std::vector<double>, std::array<Eigen::VectorXd, kPoints + 1>> part;
   Eigen::VectorXd Iq = Eigen::VectorXd::Zero(mc), Ixq = Eigen::VectorXd::Zero(mc);
   Eigen::VectorXd Kd = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nn) * mc);
   for (int a = 0; a + 1 < nn; ++a) {
@@ -83,20 +82,16 @@ void integrate_fields(const LineAnalysis::ClassLine& c, const std::vector<double
     const std::array<Eigen::VectorXd, kPoints + 1>* yp = nullptr;
     Eigen::VectorXd yp_h = Eigen::VectorXd::Zero(2 * mc);
     if (ld) {
-      // Equal loads (a patch, gravity) share their particular solutions.
-      std::vector<double> sig(static_cast<std::size_t>(4 * mc) + 1);
-      for (Eigen::Index k = 0; k < 2 * mc; ++k) {
-        sig[static_cast<std::size_t>(k)] = (**ld).g0[k];
-        sig[static_cast<std::size_t>(2 * mc + k)] = (**ld).g1[k];
-      }
-      sig.back() = static_cast<double>(key);
-      const SegmentLoad* rep = same_load.emplace(sig, &**ld).first->second;
-      auto pit = part.find({key, rep});
+      // Segments of one piece, length and load (a patch, gravity) share their particular solutions.
+      std::vector<double> sig = {static_cast<double>(piece), static_cast<double>(key)};
+      sig.insert(sig.end(), (**ld).g0.data(), (**ld).g0.data() + (**ld).g0.size());
+      sig.insert(sig.end(), (**ld).g1.data(), (**ld).g1.data() + (**ld).g1.size());
+      auto pit = part.find(sig);
       if (pit == part.end()) {
         std::array<Eigen::VectorXd, kPoints + 1> v;  // at the Gauss points and at h
-        for (std::size_t g = 0; g < kPoints; ++g) v[g] = particular(A, *rep, gauss_point(g, h).first);
-        v[kPoints] = particular(A, *rep, h);
-        pit = part.emplace(std::make_pair(key, rep), std::move(v)).first;
+        for (std::size_t g = 0; g < kPoints; ++g) v[g] = particular(A, **ld, gauss_point(g, h).first);
+        v[kPoints] = particular(A, **ld, h);
+        pit = part.emplace(std::move(sig), std::move(v)).first;
       }
       yp = &pit->second;
       yp_h = pit->second[kPoints];
