@@ -41,26 +41,34 @@ Projected project(const LineAnalysis::ClassLine& l, const Eigen::MatrixXd& Vs, c
   return p;
 }
 
-/// A node condition of the model in the class's coordinates.
-End class_end(const LineAnalysis::ClassLine& l, const EndCondition& end, double x) {
+/// A node condition of the model in the class's coordinates; `si` divides the fields into the
+/// line solves' scaled units (translations by the model's translation scale).
+End class_end(const LineAnalysis::ClassLine& l, const EndCondition& end, double x, const Eigen::VectorXd& si) {
   const int mc = l.mc;
   const Eigen::MatrixXd& W = l.W;
   End ce;
   ce.x = x;
   Eigen::MatrixXd Nc(mc, 0);
   if (end.N.cols() > 0) {
-    const Eigen::MatrixXd raw = l.Winv * end.N;
+    // Each admissible motion in scaled units, of unit length, then its part in this class: 1
+    // for a motion of the class, rounding (1e-17) for one outside it. Relative to the motion,
+    // not to the largest singular value: an end whose admissible motions all lie outside this
+    // class projects to rounding noise, whose largest value must not pass as an admissible
+    // direction (a pinned end of a 2 x 2 section let the axial class move freely: rigid 0 and
+    // the free-free axial mode). Nor to the size of the map, which mixes translations (divided
+    // by the section depth) with rotations: a section 5e10 m deep had its free end's w taken
+    // for rounding and held (a cantilever solved as clamped-pinned; fuzz seed 7, case 660).
+    Eigen::MatrixXd raw = l.Winv * end.N;
+    for (Eigen::Index c = 0; c < raw.cols(); ++c) {
+      const double len = (si.asDiagonal() * end.N.col(c)).norm();
+      if (len > 0) raw.col(c) /= len;
+    }
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(raw, Eigen::ComputeThinU);
     if (svd.info() != Eigen::Success) throw std::runtime_error("dtfm: SVD of the end conditions failed");
     const auto& sv = svd.singularValues();
-    // Relative to the size of the map, not to the largest singular value: an end whose
-    // admissible motions all lie outside this class projects to rounding noise, whose
-    // largest value must not pass as an admissible direction (a pinned end of a 2 x 2
-    // section let the axial class move freely: rigid 0 and the free-free axial mode).
-    const double map_scale = l.Winv.norm();
     int r = 0;
     for (Eigen::Index i = 0; i < sv.size(); ++i)
-      if (sv[i] > 1e-10 * map_scale) ++r;
+      if (sv[i] > 1e-10) ++r;
     Nc = svd.matrixU().leftCols(r);
   }
   ce.n_free = static_cast<int>(Nc.cols());
@@ -128,8 +136,8 @@ LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : mo
       const Projected q = project(*line, Vs, op.M, op.C, op.S, op.X, op.Q1);
       line->steps.push_back({op.x_to, q.St, q.C, q.Qt, q.M});
     }
-    for (int e = 0; e < 2; ++e) line->ends[e] = class_end(*line, model.ends[e], e == 0 ? 0.0 : model.length);
-    for (const PointCondition& pc : model.points) line->points.push_back(class_end(*line, pc.cond, pc.x));
+    for (int e = 0; e < 2; ++e) line->ends[e] = class_end(*line, model.ends[e], e == 0 ? 0.0 : model.length, si);
+    for (const PointCondition& pc : model.points) line->points.push_back(class_end(*line, pc.cond, pc.x, si));
     lines_.push_back(std::move(line));
   }
 }

@@ -115,6 +115,31 @@ BOOST_AUTO_TEST_CASE(bending_with_any_end_conditions) {
     }
 }
 
+// Dimensional analysis: all lengths times c scale every frequency by 1/c. Fuzz seed 7, case 660:
+// a cantilever 1e12 m long (section 5e10 m deep) solved as clamped-pinned with success, its
+// free end's w taken for rounding when the end's motions were measured against a map that
+// divides translations by the section depth and leaves rotations alone.
+BOOST_AUTO_TEST_CASE(frequencies_scale_with_the_geometry) {
+  Scene base = paper_beam();
+  base.theory = Theory::EulerBernoulli;
+  base.x0 = Support::named("clamped");
+  base.xL = Support::named("free");
+  const ModeList ref = modes_of(base, "1x1", 4, {ModeFamily::BendingXZ});
+  BOOST_REQUIRE(ref.omega_rad_s.size() == 4u);
+  for (double c : {1e-9, 1e12, 1e15}) {
+    Scene s = base;
+    s.geometry.length *= c;
+    s.geometry.width *= c;
+    s.geometry.height *= c;
+    const ModeList ml = modes_of(s, "1x1", 4, {ModeFamily::BendingXZ});
+    BOOST_REQUIRE(ml.omega_rad_s.size() == 4u);
+    for (int i = 0; i < 4; ++i)
+      BOOST_TEST_CONTEXT("scale " << c << " mode " << i + 1) {
+        BOOST_TEST(rel(ml.omega_rad_s[i] * c, ref.omega_rad_s[i]) < 1e-9);
+      }
+  }
+}
+
 // A spatial prism: bar (EA), torsion bar (G J with the Saint-Venant J), bending in both planes.
 BOOST_AUTO_TEST_CASE(bar_torsion_and_two_planes) {
   Scene s = paper_beam();
