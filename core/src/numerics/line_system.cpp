@@ -91,49 +91,81 @@ std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
   return xi;
 }
 
+/// Where the line meets the ground or carries a point inertia: the ends and the attachments,
+/// merged by position (an attachment at an end adds to its spring), springs per DOF ([0, inf])
+/// and point masses per DOF.
+struct Site {
+  double xi = 0;
+  std::vector<double> spring, mass;
+};
+std::vector<Site> sites_of(const LineSystem& sys) {
+  const std::size_t m = static_cast<std::size_t>(sys.m);
+  std::vector<Site> out = {{0.0, sys.left_spring, std::vector<double>(m, 0.0)},
+                           {1.0, sys.right_spring, std::vector<double>(m, 0.0)}};
+  for (const LineAttachment& a : sys.attachments) {
+    auto it = std::find_if(out.begin(), out.end(), [&](const Site& s) { return s.xi == a.xi; });
+    if (it == out.end()) {
+      out.push_back({a.xi, a.spring, a.mass});
+      continue;
+    }
+    for (std::size_t j = 0; j < m; ++j) {
+      it->spring[j] += a.spring[j];  // inf + k = inf
+      it->mass[j] += a.mass[j];
+    }
+  }
+  return out;
+}
+
 /// The rigid motions of the unsupported line (LineRigidity in the header).
 struct Rigid {
   LineRigidity info;
-  Eigen::MatrixXd Add;  // A_dd(0): Phi(xi) = exp(Add xi)
+  Eigen::MatrixXd Add;  // A_dd(0): Phi(xi) = exp(A_dd xi)
   Eigen::MatrixXd Rc;   // m x m: Phi(xi) Rc has unit value at one anchor, zero at the others
   struct Anchor {
-    int end = 0, dof = 0;
+    double xi = 0;
+    int dof = 0;
   };
   std::vector<Anchor> anchors;
   Eigen::MatrixXd psi(double xi) const {
     const Eigen::MatrixXd X = Add * xi;
     return Eigen::MatrixXd(X.exp()) * Rc;
   }
-  int anchor_of(int end, int dof) const {
+  int anchor_of(double xi, int dof) const {
     for (std::size_t a = 0; a < anchors.size(); ++a)
-      if (anchors[a].end == end && anchors[a].dof == dof) return static_cast<int>(a);
+      if (anchors[a].xi == xi && anchors[a].dof == dof) return static_cast<int>(a);
     return -1;
   }
 };
-
-double end_spring(const LineSystem& sys, int end, int dof) { return end ? sys.right_spring[dof] : sys.left_spring[dof]; }
 
 Rigid rigid_of(const LineSystem& sys) {
   Rigid R;
   const int m = sys.m;
   const Eigen::MatrixXd A0 = sys.state_matrix(0.0);
   if (!(A0.bottomLeftCorner(m, m).array() == 0.0).all()) return R;
-  if (!sys.attachments.empty()) return R;  // the split anchors end DOFs only
   for (const LinePiece& piece : sys.steps) {  // one rigid basis exp(A_dd xi) for every piece
     const Eigen::MatrixXd Ap = piece.state_matrix(0.0);
     if (!(Ap.bottomLeftCorner(m, m).array() == 0.0).all() || Ap.topLeftCorner(m, m) != A0.topLeftCorner(m, m)) return R;
   }
   R.Add = A0.topLeftCorner(m, m);
   struct Candidate {
-    int end, dof;
+    double xi;
+    int dof;
     double k;
     Eigen::RowVectorXd row;
   };
+  // Every supported DOF of the line (ends and attachments, stiffest first; the ends' free DOFs
+  // after them), so that each spring acts on an amplitude of its own where it can: a stiff spring
+  // written through another anchor's amplitude would round the soft one's share away (a beam
+  // rocking on 1e-3 N/m about a 6.6e4 N/m end came out 1.7e-8 off with two masses at its end).
   std::vector<Candidate> cand;
-  for (int end = 0; end < 2; ++end) {
-    const Eigen::MatrixXd X = R.Add * static_cast<double>(end);
+  for (const Site& s : sites_of(sys)) {
+    const Eigen::MatrixXd X = R.Add * s.xi;
     const Eigen::MatrixXd phi = X.exp();
-    for (int j = 0; j < m; ++j) cand.push_back({end, j, end_spring(sys, end, j), phi.row(j)});
+    const bool end = s.xi == 0.0 || s.xi == 1.0;
+    for (int j = 0; j < m; ++j) {
+      const double k = s.spring[static_cast<std::size_t>(j)];
+      if (end || k > 0) cand.push_back({s.xi, j, k, phi.row(j)});
+    }
   }
   std::stable_sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) { return a.k > b.k; });
   std::vector<Eigen::RowVectorXd> basis;
@@ -145,7 +177,7 @@ Rigid rigid_of(const LineSystem& sys) {
     if (!(v.norm() > 1e-8 * c.row.norm())) continue;
     basis.push_back(v / v.norm());
     G.row(static_cast<Eigen::Index>(R.anchors.size())) = c.row;
-    R.anchors.push_back({c.end, c.dof});
+    R.anchors.push_back({c.xi, c.dof});
     if (std::isinf(c.k)) ++R.info.held_rank;
     if (c.k == 0.0) ++R.info.free_rigid;
   }
@@ -222,11 +254,11 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
     }
   }
   std::vector<char> held_a(m, 0);
-  for (int end = 0; end < 2; ++end) {
-    const int node = end ? n - 1 : 0;
+  for (const Site& site : sites_of(sys)) {
+    const int node = static_cast<int>(std::lower_bound(xi.begin(), xi.end(), site.xi) - xi.begin());
     for (int j = 0; j < m; ++j) {
-      const double k = end_spring(sys, end, j);
-      const int a = R.anchor_of(end, j);
+      const double k = site.spring[static_cast<std::size_t>(j)];
+      const int a = R.anchor_of(site.xi, j);
       if (a >= 0) S.E.hold(node, j);
       if (std::isinf(k)) {
         // A held anchor holds its amplitude; any other held DOF depends on held anchors only
@@ -235,12 +267,13 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
         else S.E.hold(node, j);
         continue;
       }
-      if (k == 0.0) continue;
+      const double t = k - lambda * site.mass[static_cast<std::size_t>(j)];
+      if (t == 0.0) continue;
       const Eigen::RowVectorXd psi = S.Psi[node].row(j);
-      S.C.noalias() += k * psi.transpose() * psi;
+      S.C.noalias() += t * psi.transpose() * psi;
       if (a < 0) {
-        S.E.add_diagonal(node, j, k);
-        S.B.row(static_cast<Eigen::Index>(node) * m + j) += k * psi;
+        S.E.add_diagonal(node, j, t);
+        S.B.row(static_cast<Eigen::Index>(node) * m + j) += t * psi;
       }
     }
   }

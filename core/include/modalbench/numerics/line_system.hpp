@@ -76,12 +76,13 @@ AssembledLine assemble(const LineSystem& sys, double lambda);
 /// Number of natural frequencies with omega^2 < lambda (Wittrick-Williams).
 int count_below(const LineSystem& sys, double lambda);
 
-/// The rigid-body motions of the unsupported line and how its end springs act on them.
+/// The rigid-body motions of the unsupported line and how its supports act on them.
 ///
 /// When A(0) has no displacement-to-force block (A_fd(0) = 0: nothing ties the line to the
 /// ground), every d(xi) = Phi(xi) c with Phi = exp(A_dd(0) xi) and f = 0 solves the static field
-/// equations: m rigid motions. The end DOFs are taken in order of decreasing spring stiffness
-/// (held ones first) and the first m whose rows of Phi are independent become the anchors; the
+/// equations: m rigid motions. The supported DOFs (the ends' and the attachments' springs and
+/// holds, then the ends' free DOFs) are taken in order of decreasing spring stiffness (held ones
+/// first) and the first m whose rows of Phi are independent become the anchors; the
 /// rigid basis has unit value at one anchor and zero at the others. Then the line is written as
 /// d_i = Psi_i a + e_i with e = 0 at the anchors: the elastic part e sees a line held at its
 /// anchors (positive definite below its first natural frequency), the rigid amplitudes a see the
@@ -92,8 +93,8 @@ int count_below(const LineSystem& sys, double lambda);
 /// near-mechanism statics (springs spanning 25 orders) keep their digits.
 struct LineRigidity {
   bool available = false;  ///< A_fd(0) = 0: the line has m rigid motions
-  int held_rank = 0;       ///< how many of them the held (infinite) end springs stop
-  int free_rigid = 0;      ///< how many no end spring (finite or infinite) restrains: true rigid modes
+  int held_rank = 0;       ///< how many of them the held (infinite) springs stop
+  int free_rigid = 0;      ///< how many no spring (finite or infinite) restrains: true rigid modes
 };
 
 /// A point action anywhere on the line (a node or not): its load in the nodal convention of
