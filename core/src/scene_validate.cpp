@@ -33,6 +33,24 @@ void validate_segments(const Reader& r, const Scene& s) {
     r.fail("segments", fmt::format("the pieces end at {} m, not at geometry.length = {} m", x, s.geometry.length));
 }
 
+/// A plate R times longer than wide has its first modes sin(pi x / a) sin(n pi y / b), n = 1, 2,
+/// ..., a relative 3 / R^2 apart: beyond R = 1e7 that is below the rounding of any eigen solver
+/// (a few 1e-14 at best), so no back-end can separate them, and each would spend its whole time
+/// limit trying (a plate 3e67 m wide ran past 60 s in rfem and dtfm).
+void validate_plate_aspect(const Reader& r, const Geometry& g) {
+  constexpr double kMaxAspect = 1e7;
+  if (!(g.length > 0 && g.width > 0)) return;  // reported as such above
+  const bool long_x = g.length > g.width;
+  const double aspect = long_x ? g.length / g.width : g.width / g.length;
+  if (aspect > kMaxAspect)
+    r.fail(long_x ? "geometry.length" : "geometry.width",
+           fmt::format("the plate is {:.3g} times longer than wide (length {:g} m, width {:g} m): its first modes "
+                       "along the long side lie 3 / {:.3g}^2 = {:.2g} apart in frequency, below what double precision "
+                       "resolves, so no back-end can solve it (limit {:g}); a plate this slender is a strip: write it "
+                       "as a beam (in cylindrical bending across the short side, with E / (1 - nu^2))",
+                       aspect, g.length, g.width, aspect, 3.0 / (aspect * aspect), kMaxAspect));
+}
+
 }  // namespace
 
 void validate(const Scene& s) {
@@ -76,6 +94,7 @@ void validate(const Scene& s) {
     if (s.physics != Physics::Bending) r.fail("scene.physics", "a plate has physics 'bending'");
     if (s.theory != Theory::Kirchhoff && s.theory != Theory::Mindlin)
       r.fail("scene.theory", "a plate's theory is kirchhoff or mindlin");
+    validate_plate_aspect(r, s.geometry);
   } else if (s.theory != Theory::EulerBernoulli && s.theory != Theory::Timoshenko) {
     r.fail("scene.theory", "a beam's theory is euler-bernoulli or timoshenko");
   }

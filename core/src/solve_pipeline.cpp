@@ -431,6 +431,12 @@ void SolvePipeline::record_estimate() {
       sum.error_estimate.frequencies = sum.error_estimate.frequencies_solve = solve;
       sum.error_estimate.tolerance = scene_.request.tolerance;
       sum.error_estimate.note = "no discretization error to estimate (exact segments): the solve's own bound";
+    } else {
+      // Said, not left blank: a discretization whose error nothing measured (difference_eq with
+      // points that are nodes of no coarser or finer chain).
+      sum.error_estimate.note = fmt::format("not estimated: {} offers no second mesh for this scene besides {}",
+                                            solver_.name(), final_mesh_.spec());
+      sum.warnings.push_back("no discretization error estimate: " + sum.error_estimate.note.substr(15));
     }
   }
 }

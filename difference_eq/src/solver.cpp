@@ -26,11 +26,14 @@ long denominator(double x_over_L, long qmax) {
   return 0;
 }
 
-// Least R that puts every load and probe on a node (0 if they are not commensurate).
-long base_mesh(const Scene& s) {
+// Least R that puts every load, support and mass (and with `probes`, every probe) on a node (0 if
+// they are not commensurate). Loads, supports and masses must be nodes; a probe between nodes is
+// interpolated (Hermite, plus the element's clamped-clamped solution), on a node it is exact.
+long base_mesh(const Scene& s, bool probes) {
   std::vector<double> xs;
   for (const auto& l : s.loads) xs.push_back(l.x);
-  for (const auto& p : s.request.probes) xs.push_back(p[0]);
+  if (probes)
+    for (const auto& p : s.request.probes) xs.push_back(p[0]);
   for (const auto& p : s.point_supports) xs.push_back(p.x);
   for (const auto& m : s.masses) xs.push_back(m.x);
   for (const auto& q : s.line_loads) xs.insert(xs.end(), {q.from[0], q.to[0]});
@@ -152,6 +155,12 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
   return c;
 }
 
+/// The least R of base_mesh with the probes on nodes where they can be, else without them.
+long base_mesh(const Scene& s) {
+  const long with_probes = base_mesh(s, true);
+  return with_probes > 0 ? with_probes : base_mesh(s, false);
+}
+
 Discretization DifferenceEqSolver::default_mesh(const Scene& s) const {
   const long base = base_mesh(s);
   const long want = std::max<long>(32, 8L * s.request.modes);
@@ -183,9 +192,9 @@ std::vector<Discretization> DifferenceEqSolver::stress_meshes(const Scene& s) co
 std::optional<CoarserMesh> DifferenceEqSolver::coarser_mesh(const Scene& s, const Discretization& mesh,
                                                              const Options& options) const {
   if (mesh.counts.size() != 1 || mesh.counts[0] < 4 || mesh.counts[0] % 2) return std::nullopt;
-  const long base = base_mesh(s);
+  const long base = base_mesh(s, false);
   const int half = mesh.counts[0] / 2;
-  if (base == 0 || half % base) return std::nullopt;  // loads and probes would leave the nodes
+  if (base == 0 || half % base) return std::nullopt;  // loads, supports or masses would leave the nodes
   // Hermite cubics: eigenvalues converge at h^4 with the consistent mass, h^2 with the lumped one.
   // The expansions are even in h: h^4 then h^6 (consistent), h^2 then h^4 (lumped).
   return options.mass == MassModel::Consistent ? CoarserMesh{{{half}}, 2.0, 4.0, 6.0} : CoarserMesh{{{half}}, 2.0, 2.0, 4.0};
@@ -196,7 +205,7 @@ std::optional<Discretization> DifferenceEqSolver::finer_mesh(const Scene& s, con
   const long base = base_mesh(s);
   if (mesh.counts.size() != 1 || base == 0) return std::nullopt;
   long R = std::lround(std::ceil(mesh.counts[0] * factor));
-  R = base * ((R + 2 * base - 1) / (2 * base)) * 2;  // even, loads and probes on nodes
+  R = base * ((R + 2 * base - 1) / (2 * base)) * 2;  // even, loads (and probes where they can be) on nodes
   if (R > 1'000'000) return std::nullopt;
   return Discretization{{static_cast<int>(R)}};
 }
