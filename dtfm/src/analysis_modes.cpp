@@ -80,8 +80,9 @@ double LineAnalysis::family_share(ClassLine& c, double lambda) {
 /// Above it, the lowest ones whose bound is tight and which lie far below lambda_E (the count at a
 /// point between them and the next must agree) become enclosures [l_RR / (1 + b), l_RR] of the
 /// sliced values: l_RR is a Rayleigh-Ritz value of the static shapes, an upper bound. A sliced
-/// value inside its enclosure stays (it is at least as accurate); one outside it is replaced by
-/// the Ritz value with its bound (a rocking on 1.9 N/m beside 8e18 N/m was sliced 6.8e-7 off).
+/// value inside its enclosure stays (it is at least as accurate); one outside it is moved to the
+/// enclosure's nearer end, with its bound (a rocking on 1.9 N/m beside 8e18 N/m was sliced 6.8e-7
+/// off).
 LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
   NearRigid out;
   out.rigid = below;
@@ -214,14 +215,27 @@ LineAnalysis::NearRigid LineAnalysis::near_rigid(ClassLine& c0, int below) {
     const auto in = at.K.inertia();
     return in.negative == 0 && in.zero == 0 && at.info.clamped_below == 0;
   };
+  // Up by decades where it is positive definite at the scale itself: a class far stiffer than
+  // the model's scale (torsion with nu near -1: G = 1e17 Pa) had no lambda_E, so no bound, and its
+  // near-rigid mode was left to the count, 1.5e-8 off with a bound of 2.7e-9 (fuzz seed 7).
   double lambda_e = 0;
-  for (double t = model_.lambda_scale; t > 100.0 * ritz[0]; t *= 0.1)
-    if (anchored_pd(t)) {
-      lambda_e = t;
-      break;
+  bool bracketed = false;  // anchored_pd fails at 10 lambda_e
+  if (anchored_pd(model_.lambda_scale)) {
+    lambda_e = model_.lambda_scale;
+    for (int up = 0; up < 12 && !bracketed; ++up) {
+      if (anchored_pd(10.0 * lambda_e)) lambda_e *= 10.0;
+      else bracketed = true;
     }
+  } else {
+    for (double t = 0.1 * model_.lambda_scale; t > 100.0 * ritz[0]; t *= 0.1)
+      if (anchored_pd(t)) {
+        lambda_e = t;
+        bracketed = true;
+        break;
+      }
+  }
   // Closer (to 4 %) where a value above the threshold may be taken.
-  if (lambda_e > 0 && lambda_e < model_.lambda_scale && n_near < rf &&
+  if (lambda_e > 0 && bracketed && n_near < rf &&
       ritz[static_cast<std::size_t>(n_near)] < 1e-4 * lambda_e)
     for (int step = 0; step < 6; ++step) {
       const double up = lambda_e * std::pow(10.0, std::ldexp(1.0, -step - 1));
@@ -508,12 +522,14 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
       for (std::size_t j = 0; j < vals.size(); ++j) {
         if (j < near[c].enclosures.size()) {
           // Inside its enclosure a sliced value is known to b as well (the count that placed it is
-          // the one in doubt here), so b is its bound either way.
+          // the one in doubt here), so b is its bound either way. One outside it is moved to the
+          // enclosure's nearer end: a torsion on one spring beside G = 1e17 Pa was sliced 3e-8
+          // below the lower end, the Ritz value (the upper end) 1.3e-7 above the truth.
           const auto [ritz, b] = near[c].enclosures[j];
           out.near_rigid_bound = std::max(out.near_rigid_bound, b);
           ++out.near_rigid;
           if (vals[j] < ritz / (1.0 + b) || vals[j] > ritz * (1.0 + 1e-12)) {
-            all.push_back({ritz, c, true});
+            all.push_back({std::clamp(vals[j], ritz / (1.0 + b), ritz), c, true});
             continue;
           }
         }

@@ -224,6 +224,56 @@ BOOST_AUTO_TEST_CASE(stepped_shaft_with_disc_agrees_with_exact) {
     BOOST_TEST(std::abs(H[i] - ex.frf[i].receptance) < 1e-9 * hmax, "at " << omegas[i] << " rad/s");
 }
 
+BOOST_AUTO_TEST_CASE(torsion_near_rigid_on_one_spring_within_its_bound) {
+  // Fuzz seed 7, case 132: the stepped shaft with nu = -0.999999 (G = 1.05e17 Pa), torsion free
+  // at x0 and on 1e4 N m / rad at xL, a disc Jx at 0.5: nearly the rigid sqrt(kt / J). Its class
+  // is 1e8 times stiffer than the model's scale: the count placed it 1.5e-8 off with a bound of
+  // 2.7e-9. Reference: the frequency equation of the three pieces and the disc (transfer of
+  // (theta, T), T = G Ip theta'), solved here.
+  const Scene s = parse_scene(
+      "[scene]\nname = \"t\"\nkind = \"beam\"\nphysics = \"spatial\"\ntheory = \"euler-bernoulli\"\n"
+      "[geometry]\nlength = 1.0\n[material]\nE = 2.1e11\nnu = -0.999999\nrho = 7850.0\n"
+      "[[segments]]\nlength = 0.3\nsection = { shape = \"circle\", diameter = 0.04 }\n"
+      "[[segments]]\nlength = 0.4\nsection = { shape = \"circle\", diameter = 0.06 }\n"
+      "[[segments]]\nlength = 0.3\nsection = { shape = \"circle\", diameter = 0.04 }\n"
+      "[supports]\nx0 = { translational = 2e7, rotational = 0.0, axial = 1e8, torsional = 0.0 }\n"
+      "xL = { translational = 2e7, rotational = 0.0, axial = 0.0, torsional = 1e4 }\n"
+      "[[masses]]\nx = 0.5\nmass = 12.33\nJx = 0.06165\nJy = 0.0334\nJz = 0.0334\n[request]\nmodes = 1\n",
+      "test");
+  const double G = s.material.G, rho = s.material.rho, kt = 1e4, Jd = 0.06165;
+  auto equation = [&](double omega) {
+    Eigen::Vector2d st(1.0, 0.0);  // free end: T = 0
+    auto carry = [&](double len, double d) {
+      const double Ip = pi * std::pow(d, 4) / 32, k = omega * std::sqrt(rho / G);
+      Eigen::Matrix2d T;
+      T << std::cos(k * len), std::sin(k * len) / (G * Ip * k), -G * Ip * k * std::sin(k * len), std::cos(k * len);
+      st = T * st;
+    };
+    carry(0.3, 0.04);
+    carry(0.2, 0.06);
+    st[1] -= Jd * omega * omega * st[0];
+    carry(0.2, 0.06);
+    carry(0.3, 0.04);
+    return st[1] + kt * st[0];
+  };
+  const double Jtot = Jd + rho * pi / 32 * (0.6 * std::pow(0.04, 4) + 0.4 * std::pow(0.06, 4));
+  const double rigid = std::sqrt(kt / Jtot);
+  double lo = 0.999 * rigid, hi = rigid, flo = equation(lo);
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi), fm = equation(mid);
+    if ((fm < 0) == (flo < 0)) lo = mid, flo = fm;
+    else hi = mid;
+  }
+  const double reference = 0.5 * (lo + hi);
+  const PrismModel m = build_model(s, Discretization::parse("1x1"));
+  LineAnalysis la(m);
+  const ModeList ml = la.modes(1, {ModeFamily::Torsion});
+  BOOST_REQUIRE_EQUAL(ml.omega_rad_s.size(), 1u);
+  const double bound = 0.5 * std::max(ml.near_rigid_bound, ml.polish_floor_width);  // in omega
+  BOOST_TEST(bound < 1e-6);
+  BOOST_TEST(rel(ml.omega_rad_s[0], reference) <= bound);
+}
+
 BOOST_AUTO_TEST_CASE(round_section_statics_use_the_circle) {
   // One prism of a round section spreads a point load with the circle's own A and I (it used a
   // rectangle's: 0.62 of the deflection): pinned-pinned, central P, Timoshenko.
