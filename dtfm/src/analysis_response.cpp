@@ -265,17 +265,20 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       }
     total_share += share[ci];
   }
+  // Without any load every class is judged as loaded: zero is no answer for a mechanism, whose
+  // rigid motions are then undetermined (the other back-ends refuse it too; fuzz seed 7, case 1532).
+  const bool unloaded = !(total_share > 0);
   for (const auto& line : lines_) {
     ClassLine& c0 = *line;
-    if (!(share[static_cast<std::size_t>(c0.index)] > 1e-24 * total_share)) continue;
+    if (!unloaded && !(share[static_cast<std::size_t>(c0.index)] > 1e-24 * total_share)) continue;
     // A class with rigid motions of its own (beams) is solved split into them and its elastic part
     // (detail::RigidLine): a mechanism is then a rigid motion no support reaches, structurally, and
     // a near-mechanism keeps its digits however soft its springs.
     const std::optional<detail::RigidLine> rl = detail::rigid_line(c0, model_.length);
     if (rl && rl->unrestrained > 0)
       throw std::runtime_error(fmt::format(
-          "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free ({} / {})",
-          rl->unrestrained, to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
+          "mechanism: the supports leave {} rigid-body motion(s) of the {}{} family free ({} / {})",
+          rl->unrestrained, unloaded ? "" : "loaded ", to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
     if (!rl) {
       // Otherwise a loaded class must be free of rigid-body motions by its count just above zero:
       // its static solve would give rounding noise divided by rounding noise.
@@ -283,9 +286,9 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       const Mesh near_zero = mesh_for(c0, delta, {});
       if (const int rigid = count_det(c0, delta, near_zero).count; rigid > 0)
         throw std::runtime_error(fmt::format(
-            "mechanism: the supports leave {} rigid-body motion(s) of the loaded {} family free, or restrain them "
+            "mechanism: the supports leave {} rigid-body motion(s) of the {}{} family free, or restrain them "
             "below 1e-10 of the model's stiffness scale, which dtfm cannot resolve ({} / {})",
-            rigid, to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
+            rigid, unloaded ? "" : "loaded ", to_string(c0.family), model_.ends[0].text, model_.ends[1].text));
     }
     const ClassLine& c = rl ? rl->line : c0;
     Mesh mesh = mesh_for(c0, 0.0, required);

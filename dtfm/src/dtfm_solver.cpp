@@ -271,9 +271,12 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
     if (!ml.count_consistent) sum.raise(Status::NumericalIssue, "dtfm: " + ml.count_message);
     // The solve's own error bound on the frequencies (half the eigenvalues'): the near-rigid
     // modes' Rayleigh-Ritz bound and the bracket of any value polished only to the determinant's
-    // rounding floor.
-    if (ml.near_rigid > 0 || ml.polish_floor_width > 0)
-      sum.set_diagnostic("frequency_solve_error_bound", 0.5 * std::max(ml.near_rigid_bound, ml.polish_floor_width));
+    // rounding floor. A one-prism beam has no discretization error, so this bound is its whole
+    // estimate: given always, at least the polish's tolerance (no second mesh to compare with).
+    const bool exact_segments = scene.is_beam() && model.prisms.size() == 1;
+    if (ml.near_rigid > 0 || ml.polish_floor_width > 0 || exact_segments)
+      sum.set_diagnostic("frequency_solve_error_bound",
+                         0.5 * std::max({ml.near_rigid_bound, ml.polish_floor_width, exact_segments ? controls.rel_tol : 0.0}));
     if (ml.polish_floor_width > 0) sum.set_diagnostic("polish_floor_frequency_error_bound", 0.5 * ml.polish_floor_width);
     if (ml.near_rigid > 0) {
       const double bound = 0.5 * ml.near_rigid_bound;

@@ -88,6 +88,34 @@ BOOST_AUTO_TEST_SUITE_END()
 BOOST_AUTO_TEST_SUITE(end_to_end)
 
 // The paper's beam with one prism is the exact back-end's beam: frequencies, probes, FRF.
+// Fuzz seed 7, case 1532: a beam on one translational spring at x0 and free at xL rocks freely;
+// with its loads scaled to zero dtfm returned w = 0 with success (no class was "loaded", so none
+// was checked) while exact, rfem and difference_eq refused the mechanism. Zero is no answer there.
+BOOST_AUTO_TEST_CASE(unloaded_mechanism_is_refused_too) {
+  Scene s = scene("paper_fixed_beam.toml");
+  s.x0 = Support::named("free");
+  s.x0.kind = "springs";
+  s.x0.translational = 2e7;
+  s.xL = Support::named("free");
+  s.request.frf.reset();
+  for (auto& l : s.loads) l.Fz = l.My = 0.0;
+  const Result r = DtfmSolver().solve(s, Discretization::parse("1x1"), {});
+  BOOST_TEST((r.summary.status == Status::InvalidInput));
+  BOOST_TEST(r.summary.message.find("mechanism") != std::string::npos, r.summary.message);
+  BOOST_TEST(r.deflections.empty());
+}
+
+// A one-prism beam has no discretization error: its estimate is the solve's own bound, said so,
+// not a missing estimate.
+BOOST_AUTO_TEST_CASE(one_prism_estimate_is_the_solve_bound) {
+  const Result d = DtfmSolver().solve(scene("paper_fixed_beam.toml"), Discretization::parse("1x1"), {});
+  BOOST_REQUIRE(d.ok());
+  BOOST_TEST(d.summary.error_estimate.frequencies > 0.0);
+  BOOST_TEST(d.summary.error_estimate.frequencies < 1e-9);
+  BOOST_TEST(d.summary.error_estimate.note.find("exact segments") != std::string::npos, d.summary.error_estimate.note);
+  for (const auto& w : d.summary.warnings) BOOST_TEST(w.find("no discretization error estimate") == std::string::npos, w);
+}
+
 BOOST_AUTO_TEST_CASE(paper_beam_one_prism_equals_exact) {
   const Scene s = scene("paper_fixed_beam.toml");
   const Result d = DtfmSolver().solve(s, Discretization::parse("1x1"), {});
