@@ -431,6 +431,8 @@ void SolvePipeline::record_estimate() {
       sum.error_estimate.frequencies = sum.error_estimate.frequencies_solve = solve;
       sum.error_estimate.tolerance = scene_.request.tolerance;
       sum.error_estimate.note = "no discretization error to estimate (exact segments): the solve's own bound";
+    } else if (sum.diagnostic("exact_segments") == 1.0) {
+      sum.error_estimate.note = "no discretization error to estimate (exact segments); the solve states no bound";
     } else {
       // Said, not left blank: a discretization whose error nothing measured (difference_eq with
       // points that are nodes of no coarser or finer chain).
