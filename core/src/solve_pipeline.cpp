@@ -445,9 +445,10 @@ void SolvePipeline::record_estimate() {
     } else {
       // Said, not left blank: a discretization whose error nothing measured (difference_eq with
       // points that are nodes of no coarser or finer chain).
-      sum.error_estimate.note = fmt::format("not estimated: {} offers no second mesh for this scene besides {}",
-                                            solver_.name(), final_mesh_.spec());
-      sum.warnings.push_back("no discretization error estimate: " + sum.error_estimate.note.substr(15));
+      const std::string why =
+          fmt::format("{} offers no second mesh for this scene besides {}", solver_.name(), final_mesh_.spec());
+      sum.error_estimate.note = "not estimated: " + why;
+      sum.warnings.push_back("no discretization error estimate: " + why);
     }
   }
 }
