@@ -185,6 +185,9 @@ void SolvePipeline::plan_estimate_meshes() {
 bool SolvePipeline::estimate_resources() {
   auto& sum = result_.summary;
   ResourceEstimate est = solver_.estimate(scene_, mesh_, opt_);
+  // With a refinement the whole request runs once, on the mesh kept: what it costs beyond the
+  // first mesh's light solve is the share a refinement step replaces.
+  last_full_s_ = std::max(0.0, est.seconds - solver_.estimate(light_, mesh_, opt_).seconds);
   for (const std::optional<CoarserMesh>* c : {&coarse_, &coarser2_, &coarser3_})
     if (*c) {
       const ResourceEstimate ce = solver_.estimate(light_, (*c)->mesh, opt_);
@@ -203,9 +206,6 @@ bool SolvePipeline::estimate_resources() {
   if (est.bytes > 0) sum.set_diagnostic("estimated_memory_bytes", est.bytes);
   if (est.seconds > 0) sum.set_diagnostic("estimated_time_s", est.seconds);
   planned_s_ = est.seconds;
-  // With a refinement the whole request runs once, on the mesh kept: what it costs beyond the
-  // first mesh's light solve is the share a refinement step replaces.
-  last_full_s_ = std::max(0.0, solver_.estimate(scene_, mesh_, opt_).seconds - solver_.estimate(light_, mesh_, opt_).seconds);
   memory_limit_ = opt_.max_memory_bytes > 0 ? opt_.max_memory_bytes : default_memory_limit();
   if (est.bytes > memory_limit_)
     sum.raise(Status::ResourceLimit,
@@ -311,7 +311,8 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   // The next light solve (modes and statics), then the whole request on it (FRF and shapes too),
   // each from its own estimate: twice the whole request's planned the rfem paper plate at 82 s
   // for a run of 3.2 s (its 400 FRF samples counted in the light solve as well).
-  const double light = solver_.estimate(light_, *next, opt_).seconds * calibration;
+  const double light_estimate = solver_.estimate(light_, *next, opt_).seconds;
+  const double light = light_estimate * calibration;
   const double full = ne.seconds * calibration;
   const double predicted = light + full;
   if (ne.bytes > memory_limit_ || since_start() + predicted > opt_.max_time_s) {
@@ -345,7 +346,7 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   w.prev_spec = final_mesh_.spec();
   w.ratio_prev = ratio;
   w.cur = std::move(trial);
-  last_estimate = solver_.estimate(light_, *next, opt_).seconds;
+  last_estimate = light_estimate;
   last_time = w.cur.summary.total_time_s;
   verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, ratio, &w.prev}, w.third);
   final_mesh_ = *next;
