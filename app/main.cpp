@@ -168,6 +168,21 @@ std::string probe_line(const mb::Scene& scene, const mb::Deflection& d) {
   return out;
 }
 
+/// The transient's peaks per probe (the histories are in the JSON).
+void print_transient(const mb::Scene& scene, const mb::Transient& tr, bool verbose) {
+  std::cout << fmt::format("  transient ({}): {} modes{}, {} output times to {:g} s; truncation estimate {:.2g} of the "
+                           "largest peak\n",
+                           tr.load, tr.modes_used, tr.static_correction ? " + static correction" : "", tr.time_s.size(),
+                           tr.time_s.back(), tr.error_estimate);
+  for (std::size_t p = 0; p < tr.peaks.size(); ++p) {
+    const auto& at = scene.request.probes[p];
+    std::cout << fmt::format("  peak {}: w = {:.8e} m at t = {:.8g} s\n",
+                             scene.is_beam() ? fmt::format("x = {:g} m", at[0]) : fmt::format("({:g}, {:g}) m", at[0], at[1]),
+                             tr.peaks[p].w, tr.peaks[p].time_s);
+  }
+  if (verbose) std::cout << "  transient: " << tr.note << " (histories: --json)\n";
+}
+
 /// The result as text: status, the model solved and whether it is the scene's theory, the mesh
 /// kept, the numbers, the estimate; the method and options in words with --verbose.
 void print_text(const mb::Scene& scene, const std::string& backend, const mb::Discretization& mesh, bool mesh_given,
@@ -215,6 +230,7 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
       std::cout << fmt::format("  deflections: estimated error {:.2g} of the largest\n", xp.deflection_error);
   }
   if (verbose && !xp.note.empty()) std::cout << "  extrapolation: " << xp.note << "\n";
+  if (!r.transient.empty()) print_transient(scene, r.transient, verbose);
   for (const auto& n : scene.notes) std::cout << "  note: " << n << "\n";
   for (const auto& w : sum.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << fmt::format("  time {:.4g} s{}\n", sum.total_time_s, verbose ? "" : " (--verbose: method and options)");

@@ -7,6 +7,34 @@ namespace modalbench {
 namespace {
 // JSON has no Inf/NaN: such a value becomes null (and the summary already flags it).
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+/// request.transient's histories: per probe its position, each component's history, and the peak of w.
+nlohmann::json transient_json(const Scene& scene, const Transient& tr) {
+  using nlohmann::json;
+  json probes = json::array();
+  for (std::size_t p = 0; p < tr.values.size(); ++p) {
+    const auto& at = scene.request.probes[p];
+    json e;
+    e["position"] = scene.is_beam() ? json::array({at[0]}) : json::array({at[0], at[1]});
+    for (std::size_t c = 0; c < tr.components.size(); ++c) {
+      json h = json::array();
+      for (double v : tr.values[p][c]) h.push_back(num(v));
+      e[component_name(tr.components[c])] = h;
+    }
+    e["peak"] = {{"w", num(tr.peaks[p].w)}, {"time_s", num(tr.peaks[p].time_s)}};
+    probes.push_back(e);
+  }
+  return {{"time_s", tr.time_s},
+          {"probes", probes},
+          {"units", "m (u, v, w), rad (theta_x, theta_y, theta_z), s"},
+          {"modes_used", tr.modes_used},
+          {"rigid_modes", tr.rigid_modes},
+          {"static_correction", tr.static_correction},
+          {"error_estimate", num(tr.error_estimate)},
+          {"load", tr.load},
+          {"note", tr.note}};
+}
+
 }  // namespace
 
 nlohmann::json to_json(const Scene& scene, const std::string& backend, const Discretization& mesh,
@@ -136,7 +164,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   }
   const auto& t = r.summary.timings_s;
   j["timing_s"] = {{"build", t.build}, {"modes", t.modes}, {"statics", t.statics}, {"frf", t.frf},
-                   {"error_estimate", t.error_estimate}, {"total", r.summary.total_time_s}};
+                   {"error_estimate", t.error_estimate}, {"transient", t.transient}, {"total", r.summary.total_time_s}};
   const auto& ee = r.summary.error_estimate;
   j["error_estimate"] = {{"frequencies", num(ee.frequencies)},
                          {"deflections", num(ee.deflections)},
@@ -168,6 +196,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
                          {"deflection_next_order", num(xp.deflection_next_order)},
                          {"note", xp.note}};
   }
+  if (!r.transient.empty()) j["transient"] = transient_json(scene, r.transient);
   json diag = json::object();
   for (const auto& [name, v] : r.summary.diagnostics) diag[name] = num(v);
   j["diagnostics"] = diag;

@@ -109,6 +109,7 @@ std::string to_string(SectionShape s) {
 std::vector<std::array<double, 2>> Scene::shape_points() const {
   std::vector<std::array<double, 2>> p;
   if (!request.shapes) return p;
+  if (!request.shapes->points.empty()) return request.shapes->points;
   const int nx = request.shapes->nx, ny = is_plate() ? request.shapes->ny : 1;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)

@@ -267,12 +267,13 @@ void read_shapes(const Reader& r, const toml::node& n, Scene& s) {
   s.request.shapes = sr;
 }
 
-/// [request]: modes, probes, frf, shapes, tolerance.
+/// [request]: modes, probes, frf, shapes, tolerance, transient.
 void read_request(const Reader& r, const toml::table& root, Scene& s) {
   if (const toml::node* rn = root.get("request")) {
     auto t = rn->as_table();
     if (!t) r.fail("request", "must be a table");
-    r.only_keys(*t, "request", {"modes", "probes", "frf", "shapes", "tolerance"});
+    r.only_keys(*t, "request", {"modes", "probes", "frf", "shapes", "tolerance", "transient"});
+    if (const toml::node* tn = t->get("transient")) read_transient(r, *tn, s);
     if (auto tol = r.opt_number(*t, "request", "tolerance")) {
       if (!(*tol >= 1e-14 && *tol <= 1.0))
         r.fail("request.tolerance", fmt::format("must lie in [1e-14, 1] (relative error; got {})", *tol));

@@ -127,4 +127,7 @@ void read_distributed_loads(const Reader& r, const toml::table& root, Scene& s);
 /// [gravity].
 void read_gravity(const Reader& r, const toml::table& root, Scene& s);
 
+/// [request.transient] (scene_parse_transient.cpp).
+void read_transient(const Reader& r, const toml::node& n, Scene& s);
+
 }  // namespace modalbench::scene_detail

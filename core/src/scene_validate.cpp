@@ -51,6 +51,44 @@ void validate_plate_aspect(const Reader& r, const Geometry& g) {
                        aspect, g.length, g.width, aspect, 3.0 / (aspect * aspect), kMaxAspect));
 }
 
+/// [request.transient]: the grid, the time function, the damping, and what it needs of the scene.
+void validate_transient(const Reader& r, const Scene& s) {
+  if (!s.request.transient) return;
+  const TransientRequest& t = *s.request.transient;
+  const std::string w = "request.transient";
+  auto positive = [&](const std::string& key, double v) {
+    if (!(std::isfinite(v) && v > 0)) r.fail(w + "." + key, fmt::format("must be finite and > 0 (got {})", v));
+  };
+  positive("duration", t.duration);
+  positive("step", t.step);
+  if (t.step > t.duration) r.fail(w + ".step", fmt::format("must not exceed the duration ({} s)", t.duration));
+  if (t.duration / t.step > 1e6)
+    r.fail(w + ".step", fmt::format("gives {:.3g} output times; at most 1e6 are written", t.duration / t.step));
+  if (t.load == TransientRequest::Load::Ramp) positive("rise", t.rise);
+  if (t.load == TransientRequest::Load::Harmonic) positive("omega", t.omega);
+  if (t.load == TransientRequest::Load::Table) {
+    if (t.time.size() != t.factor.size())
+      r.fail(w + ".load", fmt::format("time and factor must have the same length ({} and {})", t.time.size(), t.factor.size()));
+    for (std::size_t i = 0; i < t.time.size(); ++i) {
+      if (!std::isfinite(t.time[i]) || !std::isfinite(t.factor[i])) r.fail(w + ".load", "values must be finite");
+      if (i == 0 && t.time[0] != 0) r.fail(w + ".load.time", "must start at 0 (the response starts at rest at t = 0)");
+      if (i > 0 && !(t.time[i] > t.time[i - 1])) r.fail(w + ".load.time", "must be strictly ascending");
+    }
+  }
+  if (t.damping == TransientRequest::Damping::Modal && !(t.zeta >= 0 && t.zeta <= 100))
+    r.fail(w + ".damping.modal", fmt::format("the damping ratio must lie in [0, 100] (got {})", t.zeta));
+  if (t.damping == TransientRequest::Damping::Rayleigh && !(t.alpha >= 0 && t.beta >= 0 && std::isfinite(t.alpha + t.beta)))
+    r.fail(w + ".damping.rayleigh", "alpha (1/s) and beta (s) must be finite and >= 0");
+  if (t.damping == TransientRequest::Damping::None && s.material.loss_factor > 0)
+    r.fail(w + ".damping",
+           "missing: material.loss_factor (the FRFs' structural damping) has no causal form in time; give { modal = "
+           "zeta } (zeta = eta / 2 matches it at resonance) or { rayleigh = [alpha, beta] }");
+  if (s.request.probes.empty()) r.fail(w, "needs request.probes: the histories are given at the probes");
+  if (s.all_point_loads().empty() && s.all_distributed_loads().empty())
+    r.fail(w, "the scene has no loads: the transient applies the static loads ([[loads]], line loads, pressures, gravity) "
+              "times its time function");
+}
+
 }  // namespace
 
 void validate(const Scene& s) {
@@ -147,6 +185,7 @@ void validate(const Scene& s) {
       r.fail(fmt::format("loads[{}]", i), "a plate in bending takes Fz, Mx and My (no in-plane Fx, Fy, Mz)");
   }
   if (s.request.modes < 0) r.fail("request.modes", "must be >= 0");
+  validate_transient(r, s);
 }
 
 }  // namespace modalbench

@@ -1,6 +1,7 @@
 #pragma once
 // What the steps of Solver::solve (solve_pipeline.cpp) share inside core: the options in force,
 // the process's resources, and the verdict on a result's discretization error. Not installed.
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,5 +46,15 @@ using Verdict = std::pair<ErrorEstimate, std::vector<std::string>>;
 /// judged one has no coarser): the roles of the pair swap and `coarser` is not used.
 Verdict judge_discretization(const Scene& scene, double order, const Result& fine, const MeshSolve& coarse,
                              const std::optional<MeshSolve>& coarser = std::nullopt, bool other_is_finer = false);
+
+/// The back-end's solve of a scene on the mesh kept (the transient's modal solves).
+using ModalSolve = std::function<Result(const Scene&)>;
+
+/// The scene's request.transient (transient/superposition.cpp): modes solved with `solve` at the
+/// probes and the load points, superposed with the static correction from result.deflections;
+/// fills result.transient and raises what it finds on result.summary. Throws std::runtime_error
+/// where the modal solve fails. Stops doubling the modes where a round would not fit in
+/// time_left_s.
+void solve_transient(const Scene& scene, const ModalSolve& solve, double time_left_s, Result& result);
 
 }  // namespace modalbench::detail

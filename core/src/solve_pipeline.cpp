@@ -5,7 +5,8 @@
 //   refine the default mesh to the tolerance,
 //   solve the request on the mesh kept,
 //   estimate the error (where the refinement did not),
-//   extrapolate, and finish (nothing non-finite unflagged, timings).
+//   extrapolate, the time history (request.transient, by modal superposition),
+//   and finish (nothing non-finite unflagged, timings).
 // Each step is a member function of SolvePipeline; the state they pass on is its members.
 #include "solve_internal.hpp"
 
@@ -63,6 +64,7 @@ class SolvePipeline {
   void estimate_error();
   void record_estimate();
   void extrapolate();
+  void transient();
   void finish();
 
   // Parts of the steps.
@@ -116,6 +118,7 @@ Result SolvePipeline::run() {
         estimate_error();
         record_estimate();
         extrapolate();
+        transient();
       }
     }
   } catch (const InputError& e) {
@@ -156,9 +159,14 @@ bool SolvePipeline::check_request() {
   }
   if (!cap_.statics) scene_.request.probes.clear();
   if (!cap_.frf) scene_.request.frf.reset();
+  if (rq.transient && !cap_.modes) {
+    missing_.push_back("transient response (it superposes modes)");
+    scene_.request.transient.reset();
+  }
   light_ = scene_;
   light_.request.frf.reset();
   light_.request.shapes.reset();
+  light_.request.transient.reset();
   return true;
 }
 
@@ -465,6 +473,21 @@ void SolvePipeline::extrapolate() {
   }
   for (auto& w : estimate_warnings_) sum.warnings.push_back(std::move(w));
   sum.timings_s.error_estimate = estimate_time_;
+}
+
+/// The time history on the mesh kept (transient/superposition.cpp): its failure is the
+/// transient's alone, said with the status it had.
+void SolvePipeline::transient() {
+  auto& sum = result_.summary;
+  if (!scene_.request.transient || severity(sum.status) >= severity(Status::ResourceLimit)) return;
+  try {
+    solve_transient(scene_, [&](const Scene& sc) { return solve_light(sc, final_mesh_); },
+                    opt_.max_time_s - since_start(), result_);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    sum.raise(Status::NumericalIssue, std::string("transient: ") + e.what());
+  }
 }
 
 /// Nothing non-finite leaves a solver unflagged; every mode has a family; memory and time noted.

@@ -110,7 +110,11 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     const BeamBending p = beam.at(xi * L);
     return p.rhoA * d[0] * d[0] * L * L + p.rhoI * d[1] * d[1];
   });
-  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) { return beam.at(xi * L).rhoA * d[0] * L; });
+  // |rhoA w L| <= sqrt(rhoA m(x)), m the modal mass's integrand: of the mode's size on average.
+  double rhoA_max = beam.rhoA;
+  for (const BendingStep& p : beam.steps) rhoA_max = std::max(rhoA_max, p.rhoA);
+  out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) { return beam.at(xi * L).rhoA * d[0] * L; },
+                                         std::sqrt(rhoA_max * out.modal_mass / L));
   add_point_masses(points, [&](double x) {
     const Eigen::VectorXd d = mode.displacement(x / L);
     return std::pair{d[0] * L, d[1]};

@@ -103,6 +103,8 @@ struct PhaseTimes {
   double build = 0, modes = 0, statics = 0, frf = 0;
   /// The coarser mesh solved for the discretization-error estimate (0 where none is made).
   double error_estimate = 0;
+  /// The time history (request.transient): its modal solves and the superposition.
+  double transient = 0;
 };
 
 
@@ -158,6 +160,30 @@ struct Extrapolation {
   double deflection_next_order = kNotMeasured;  ///< s for deflections: p (no gain assumed)
   std::string note;
   bool empty() const { return frequencies_rad_s.empty() && deflections.empty(); }
+};
+
+/// The time history of `[request.transient]` (transient.hpp): modal superposition of the modes the
+/// back-end gave, each integrated exactly for the load's time function.
+struct TransientPeak {
+  double w = 0;       ///< the value of w of largest magnitude over [0, duration], with its sign, m
+  double time_s = 0;  ///< when it occurs (located on the modes' closed forms, not the output grid)
+};
+struct Transient {
+  std::vector<double> time_s;  ///< 0, step, 2 step, ... duration; t = 0 is the instant after loading (0+)
+  std::vector<int> components;  ///< dofs indices of the histories (the scene's shape components)
+  /// values[probe][component][time]: m (translations) or rad (rotations).
+  std::vector<std::vector<std::vector<double>>> values;
+  std::vector<TransientPeak> peaks;  ///< per probe
+  int modes_used = 0;                ///< modes superposed (rigid-body modes included)
+  int rigid_modes = 0;               ///< of them, with omega = 0
+  bool static_correction = false;    ///< whether the truncated modes' static share was added
+  /// Estimated truncation error of the histories: the largest change over the probes and the
+  /// time span when the modes used are halved, or the first neglected mode's response, whichever
+  /// is larger, relative to the largest |w| peak.
+  double error_estimate = kNotMeasured;
+  std::string load;  ///< the time function, in words
+  std::string note;  ///< how it was made, and anything a user should know
+  bool empty() const { return time_s.empty(); }
 };
 
 struct Summary {
@@ -225,6 +251,7 @@ struct Result {
   std::vector<FrfSample> frf;
   ModeShapes mode_shapes;  ///< when the scene asks for them (request.shapes)
   Extrapolation extrapolated;  ///< Richardson values from the error estimate's meshes (may be empty)
+  Transient transient;  ///< when the scene asks for it (request.transient)
   Summary summary;
 
   bool ok() const { return summary.status == Status::Success; }

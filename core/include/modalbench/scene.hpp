@@ -187,14 +187,42 @@ struct FrfRequest {
 /// across a plate's width (1 for a beam). `[request] shapes = true` gives the defaults.
 struct ShapeRequest {
   int nx = 0, ny = 1;
+  /// Where given (in code only: the transient response's load quadrature and probes), the points
+  /// sampled instead of the nx x ny grid.
+  std::vector<std::array<double, 2>> points{};
   static constexpr int kBeamDefaultNx = 41, kPlateDefaultNx = 21, kPlateDefaultNy = 13;
 };
+
+/// `[request.transient]`: the time history of the scene's static loads (all of them, gravity
+/// included) times a time function g(t), from rest at t = 0, by modal superposition.
+struct TransientRequest {
+  double duration = 0;  ///< s
+  double step = 0;      ///< output step, s
+  /// g(t): step (1 for t > 0), impulse (the loads are impulses, N s, at t = 0), ramp (t / rise up to
+  /// rise, then 1), harmonic (sin(omega t)), table (piecewise linear through time/factor, the last
+  /// factor held after the last time).
+  enum class Load { Step, Impulse, Ramp, Harmonic, Table };
+  Load load = Load::Step;
+  double rise = 0;   ///< ramp, s
+  double omega = 0;  ///< harmonic, rad/s
+  std::vector<double> time, factor;  ///< table: ascending times from 0, s; factors
+  /// Damping per mode: none; modal (the same ratio zeta for every mode); Rayleigh
+  /// (C = alpha M + beta K: zeta_n = alpha / (2 omega_n) + beta omega_n / 2).
+  enum class Damping { None, Modal, Rayleigh };
+  Damping damping = Damping::None;
+  double zeta = 0, alpha = 0, beta = 0;
+  /// Mode acceleration: the truncated modes' static share (the statics minus the used modes'
+  /// static part) added quasi-statically.
+  bool static_correction = true;
+};
+std::string to_string(TransientRequest::Load);  ///< step, impulse, ramp, harmonic, table
 
 struct Request {
   int modes = 0;
   std::vector<std::array<double, 2>> probes;  ///< beam: {x, 0}; plate: {x, y}
   std::optional<FrfRequest> frf;
   std::optional<ShapeRequest> shapes;  ///< absent: no shapes are computed (nor paid for)
+  std::optional<TransientRequest> transient;  ///< absent: no time history
   /// Relative accuracy asked of a discretized result: a back-end with a mesh estimates its own
   /// discretization error (Richardson against a second, coarser mesh) and a result whose
   /// estimate exceeds this is `not-converged` (frequencies; deflections relative to the largest).

@@ -26,8 +26,12 @@ class LineMode {
   Eigen::VectorXd state(double xi) const;
   /// The displacements d at xi.
   Eigen::VectorXd displacement(double xi) const { return state(xi).head(m_); }
-  /// int_0^1 g(d(xi), xi) dxi, segment by segment (GSL adaptive quadrature, quadrature.hpp).
-  double integrate(const std::function<double(const Eigen::VectorXd& d, double xi)>& g) const;
+  /// int_0^1 g(d(xi), xi) dxi, segment by segment (GSL adaptive quadrature, quadrature.hpp), to
+  /// 1e-12 relative or 1e-13 absolutely of |g| on each segment; `zero_scale`, where given, is a size
+  /// of |g| for the whole mode below which the integral counts as zero (a participation integral of
+  /// a mode without that motion, e.g. a Timoshenko beam's thickness-shear mode with w = 0, is
+  /// rounding only, and no relative accuracy can be reached on it).
+  double integrate(const std::function<double(const Eigen::VectorXd& d, double xi)>& g, double zero_scale = 0) const;
 
  private:
   int m_ = 0;
