@@ -47,14 +47,22 @@ using Verdict = std::pair<ErrorEstimate, std::vector<std::string>>;
 Verdict judge_discretization(const Scene& scene, double order, const Result& fine, const MeshSolve& coarse,
                              const std::optional<MeshSolve>& coarser = std::nullopt, bool other_is_finer = false);
 
-/// The back-end's solve of a scene on the mesh kept (the transient's modal solves).
+/// The back-end's solve of a scene on the mesh kept (the transient's modal solves), and its
+/// estimated run time, s.
 using ModalSolve = std::function<Result(const Scene&)>;
+using ModalEstimate = std::function<double(const Scene&)>;
 
-/// The scene's request.transient (transient/superposition.cpp): modes solved with `solve` at the
-/// probes and the load points, superposed with the static correction from result.deflections;
-/// fills result.transient and raises what it finds on result.summary. Throws std::runtime_error
-/// where the modal solve fails. Stops doubling the modes where a round would not fit in
-/// time_left_s.
-void solve_transient(const Scene& scene, const ModalSolve& solve, double time_left_s, Result& result);
+/// The modes the transient starts with: request.modes, at least 12.
+int transient_first_modes(const Scene& scene);
+/// The transient's modal solve of `modes` + 1 modes (one kept back as the first neglected): the
+/// shapes at the probes and the load points, nothing else.
+Scene transient_modal_scene(const Scene& scene, int modes);
+/// The scene's request.transient (transient/superposition.cpp): modes solved with `solve`,
+/// superposed with the static correction from result.deflections; fills result.transient and
+/// raises what it finds on result.summary. Throws std::runtime_error where the modal solve fails.
+/// The modes double (at most 4 times) while the estimate exceeds the tolerance and a round fits
+/// in time_left_s. Returns the estimated time of the rounds after the first (planned by the caller).
+double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalEstimate& estimate, double time_left_s,
+                       Result& result);
 
 }  // namespace modalbench::detail

@@ -211,6 +211,12 @@ bool SolvePipeline::estimate_resources() {
                                           static_cast<double>(scene_.shape_components().size())
                                     : 0.0);
   est.bytes += 800.0 * samples;
+  // The time history's first modal solve (its later rounds are planned as they start).
+  if (rq.transient) {
+    const ResourceEstimate te = solver_.estimate(transient_modal_scene(scene_, transient_first_modes(scene_)), mesh_, opt_);
+    est.seconds += te.seconds;
+    est.bytes = std::max(est.bytes, te.bytes);
+  }
   if (est.bytes > 0) sum.set_diagnostic("estimated_memory_bytes", est.bytes);
   if (est.seconds > 0) sum.set_diagnostic("estimated_time_s", est.seconds);
   planned_s_ = est.seconds;
@@ -481,8 +487,10 @@ void SolvePipeline::transient() {
   auto& sum = result_.summary;
   if (!scene_.request.transient || severity(sum.status) >= severity(Status::ResourceLimit)) return;
   try {
-    solve_transient(scene_, [&](const Scene& sc) { return solve_light(sc, final_mesh_); },
-                    opt_.max_time_s - since_start(), result_);
+    planned_s_ += solve_transient(
+        scene_, [&](const Scene& sc) { return solve_light(sc, final_mesh_); },
+        [&](const Scene& sc) { return solver_.estimate(sc, final_mesh_, opt_).seconds; }, opt_.max_time_s - since_start(),
+        result_);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {

@@ -114,6 +114,10 @@ class Result:
         self.extrapolated_frequencies_rad_s = (
             np.array([_num(f) for f in x["frequencies_rad_s"]], dtype=float) if x.get("frequencies_rad_s") else None)
         self.extrapolated_frequency_error = _num(x.get("frequency_error"))
+        # The time history of [request.transient] (None where not asked: see as_dict["transient"]).
+        tr = doc.get("transient")
+        self.transient = tr
+        self.time_s = np.array(tr["time_s"], dtype=float) if tr else None
 
     @property
     def ok(self):
@@ -124,6 +128,12 @@ class Result:
         if not self.mode_shapes:
             return None
         return np.array(self.mode_shapes[component], dtype=float)
+
+    def history(self, component="w"):
+        """The transient's histories of one component as an array [probe, time] (None without one)."""
+        if not self.transient:
+            return None
+        return np.array([[_num(v) for v in p[component]] for p in self.transient["probes"]], dtype=float)
 
     def __repr__(self):
         return f"Result({self.backend} {self.mesh}: {self.status}, {len(self.frequencies_rad_s)} frequencies)"

@@ -177,3 +177,30 @@ def test_the_gil_is_released_while_a_backend_works():
     t.join()
     # With the GIL held for the whole solve the main thread could not have run in between.
     assert ticks > 5
+
+
+def test_a_transient_comes_as_arrays_and_peaks_at_twice_the_statics():
+    # An undamped simply supported Euler-Bernoulli beam under a midspan step force: every excited
+    # mode has omega_n = n^2 omega_1, so the midspan reaches twice F L^3 / (48 EI) at T1 / 2.
+    L, EI, rhoA, F = 1.0, 2.1e11 * 0.1**4 / 12, 7850.0 * 0.01, -1000.0
+    w1 = (np.pi / L) ** 2 * np.sqrt(EI / rhoA)
+    T1 = 2 * np.pi / w1
+    s = mb.Scene.from_dict({
+        "scene": {"name": "step", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
+        "geometry": {"length": L, "width": 0.1, "height": 0.1},
+        "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
+        "supports": {"x0": "pinned", "xL": "pinned"},
+        "loads": [{"x": 0.5, "Fz": F}],
+        "request": {"probes": [0.5], "tolerance": 1e-5,
+                    "transient": {"duration": T1, "step": T1 / 100, "load": "step"}},
+    })
+    r = mb.solve(s, "exact")
+    assert r.ok, r.message
+    w = r.history("w")
+    assert w.shape == (1, 101) and r.time_s.shape == (101,)
+    twice = 2 * F * L**3 / (48 * EI)
+    peak = r.transient["probes"][0]["peak"]
+    est = r.transient["error_estimate"]
+    assert abs(peak["w"] - twice) <= est * abs(peak["w"])
+    assert abs(peak["time_s"] - T1 / 2) <= 1e-6 * T1
+    assert abs(w[0, 50] - twice) <= est * abs(twice)  # t = T1 / 2 is on the output grid

@@ -172,3 +172,37 @@ BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   no_probes.replace(no_probes.find("probes = [1.0, 0.5]"), 19, "");
   expect_input_error(no_probes, "request.transient", "needs request.probes");
 }
+
+// NAFEMS 13T undamped: a doubly symmetric load on a simply supported square Kirchhoff plate excites
+// only odd (m, n), whose frequencies are odd multiples of omega_11, so the centre reaches exactly
+// twice its static deflection at T11 / 2 (3.548871 mm = 2 x 1.774436 mm, the Navier series).
+BOOST_AUTO_TEST_CASE(thin_plate_13T_undamped_reaches_twice_its_static_deflection) {
+  Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/nafems_13t_thin_plate.toml");
+  s.request.transient->damping = TransientRequest::Damping::None;
+  s.request.tolerance = 1e-4;
+  Options opt;
+  opt.estimate_error = false;
+  const Result r = registry().get("exact").solve(s, Discretization{}, opt);
+  BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
+  const double D = 2e11 * std::pow(0.05, 3) / (12 * (1 - 0.09)), w11 = 2 * M_PI * M_PI / 100 * std::sqrt(D / (8000 * 0.05));
+  const double twice = 2 * r.deflections[0].w;
+  BOOST_TEST(std::abs(twice / -3.548871e-3 - 1) <= 3e-7);  // the statics against the published-precision value
+  const TransientPeak& p = r.transient.peaks[0];
+  BOOST_TEST(std::abs(p.w - twice) <= r.transient.error_estimate * std::abs(p.w), p.w << " vs " << twice);
+  BOOST_TEST(std::abs(p.time_s - M_PI / w11) <= 1e-6 * M_PI / w11, p.time_s << " vs " << M_PI / w11);
+}
+
+// The deep beam's seventh mode is its thickness-shear mode (w = 0, omega^2 = kappa G A / rho I):
+// its participation is zero to rounding, which no relative tolerance reaches (the exact back-end's
+// shapes failed on it). Its modal force under any transverse load is zero too.
+BOOST_AUTO_TEST_CASE(a_mode_without_w_has_zero_participation) {
+  Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/nafems_5t_deep_beam.toml");
+  s.request.transient.reset();
+  s.request.modes = 8;
+  s.request.shapes = ShapeRequest{41, 1};
+  const Result r = registry().get("exact").solve(s, Discretization{}, Options{});
+  BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
+  const double G = 2e11 / 2.6, cutoff = std::sqrt(0.8496732026143791 * G * 4.0 / (8000 * 16.0 / 12));
+  BOOST_TEST(std::abs(r.frequencies_rad_s[6] / cutoff - 1) <= 1e-10);
+  BOOST_TEST(std::abs(r.mode_shapes.participation[6][2]) <= 1e-9 * std::abs(r.mode_shapes.participation[0][2]));
+}

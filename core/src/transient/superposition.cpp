@@ -208,17 +208,8 @@ void peaks_and_estimate(const Context& cx, Round& rd, const std::vector<std::vec
 
 /// One round: the modal solve with `modes` + 1 modes, and everything from it.
 Round one_round(const Context& cx, const ModalSolve& solve, int modes, Result& result) {
-  Scene sub = cx.scene;
   const std::vector<LoadPoint> loads = load_points(cx.scene, modes + 1);
-  ShapeRequest sr;
-  sr.points = cx.scene.request.probes;
-  for (const LoadPoint& p : loads) sr.points.push_back(p.at);
-  sub.request.modes = modes + 1;
-  sub.request.shapes = sr;
-  sub.request.probes.clear();
-  sub.request.frf.reset();
-  sub.request.transient.reset();
-  const Result r = solve(sub);
+  const Result r = solve(transient_modal_scene(cx.scene, modes));
   if (severity(r.summary.status) > severity(Status::NotConverged) || r.mode_shapes.empty())
     throw std::runtime_error(fmt::format("the modal solve with {} modes was {}: {}", modes + 1, to_string(r.summary.status),
                                          r.summary.message.empty() ? "no mode shapes" : r.summary.message));
@@ -231,7 +222,23 @@ Round one_round(const Context& cx, const ModalSolve& solve, int modes, Result& r
 
 }  // namespace
 
-void solve_transient(const Scene& scene, const ModalSolve& solve, double time_left_s, Result& result) {
+Scene transient_modal_scene(const Scene& scene, int modes) {
+  Scene sub = scene;
+  ShapeRequest sr;
+  sr.points = scene.request.probes;
+  for (const LoadPoint& p : load_points(scene, modes + 1)) sr.points.push_back(p.at);
+  sub.request.modes = modes + 1;
+  sub.request.shapes = sr;
+  sub.request.probes.clear();
+  sub.request.frf.reset();
+  sub.request.transient.reset();
+  return sub;
+}
+
+int transient_first_modes(const Scene& scene) { return std::max(12, scene.request.modes); }
+
+double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalEstimate& estimate, double time_left_s,
+                       Result& result) {
   const auto t0 = std::chrono::steady_clock::now();
   const TransientRequest& rq = *scene.request.transient;
   auto& sum = result.summary;
@@ -249,10 +256,12 @@ void solve_transient(const Scene& scene, const ModalSolve& solve, double time_le
   const std::vector<int> comps = scene.shape_components();
   Context cx{scene, rq, LoadFunction::of(rq), statics, scene.request.probes.size(),
              static_cast<int>(std::find(comps.begin(), comps.end(), 2) - comps.begin())};
-  int modes = std::max(12, scene.request.modes);
+  int modes = transient_first_modes(scene);
+  double planned = 0;
   Round rd;
   for (int round = 0;; ++round) {
     const auto tr = std::chrono::steady_clock::now();
+    if (round > 0) planned += estimate(transient_modal_scene(scene, modes));
     rd = one_round(cx, solve, modes, result);
     if (rd.basis.rigid > 0 && cx.statics) {
       cx.statics = nullptr;
@@ -262,7 +271,7 @@ void solve_transient(const Scene& scene, const ModalSolve& solve, double time_le
     peaks_and_estimate(cx, rd, corr);
     const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
     const bool complete = rd.basis.used == rd.basis.computed;
-    if (!(rd.estimate > scene.request.tolerance) || complete || round == 3 || 3.0 * took > time_left_s) {
+    if (!(rd.estimate > scene.request.tolerance) || complete || round == 4 || 3.0 * took > time_left_s) {
       histories(cx, rd.basis, corr, rd.out);
       break;
     }
@@ -286,6 +295,7 @@ void solve_transient(const Scene& scene, const ModalSolve& solve, double time_le
                                                 rd.estimate, out.modes_used, scene.request.tolerance));
   result.transient = std::move(out);
   sum.timings_s.transient = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return planned;
 }
 
 }  // namespace modalbench::detail
