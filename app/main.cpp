@@ -24,6 +24,7 @@
 #include <mutex>
 #include <thread>
 
+#include "rom_command.hpp"
 #include "modalbench/harness/calculix.hpp"
 #include "modalbench/harness/comparison.hpp"
 #include "modalbench/json_output.hpp"
@@ -297,6 +298,19 @@ int main(int argc, char** argv) {
   std::string vtk_dir;
   solve->add_option("--vtk", vtk_dir, "write the mode shapes and static deflections as VTK (.vtu) files into DIR");
 
+  auto* rom = app.add_subcommand("rom", "export a reduced-order state-space model (A, B, C, D) as JSON");
+  RomArgs rom_args;
+  std::string rom_scene;
+  rom->add_option("scene", rom_scene, "scene file (TOML), or a built-in scene's name")->required();
+  rom->add_option("--backend,-b", rom_args.backend, "back-end name (default: exact)");
+  rom->add_option("--mesh,-m", rom_args.mesh, "discretization (default: the back-end's, refined to the tolerance)");
+  rom->add_option("--inputs", rom_args.inputs, "a unit force Fz at each: x (beam) or x,y (plate), m")->required();
+  rom->add_option("--outputs", rom_args.outputs, "w, its velocity and acceleration at each: x or x,y, m")->required();
+  rom->add_option("--modes", rom_args.modes, "modes retained (default 12)")->check(CLI::Range(1, 100000));
+  rom->add_option("--zeta", rom_args.zeta, "modal damping ratio in A (default 0)")->check(CLI::Range(0.0, 100.0));
+  rom->add_flag("--no-static-correction", rom_args.no_static_correction, "D without the truncated modes' static part");
+  rom->add_option("--out,-o", rom_args.out, "write the JSON here (default: stdout)");
+
   auto* opts = app.add_subcommand("options", "list a back-end's options with their defaults");
   std::string opts_backend;
   opts->add_option("backend", opts_backend, "back-end name (default: all)");
@@ -349,6 +363,11 @@ int main(int argc, char** argv) {
     if (*list) return run_list(reg);
     if (*study) return run_study(study_spec, study_out, study_scheduler, study_workers);
     if (*opts) return run_options(reg, opts_backend);
+    if (*rom) {
+      const mb::Scene scene = mb::load_scene(resolve_scene(rom_scene));
+      reg.check_backend_tables(scene);
+      return run_rom(reg, scene, rom_args);
+    }
     if (*solve) {
       const mb::Scene scene = mb::load_scene(resolve_scene(scene_path));
       reg.check_backend_tables(scene);

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "modalbench/harness/rom.hpp"
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
 #include "modalbench/scene.hpp"
@@ -103,6 +104,33 @@ PYBIND11_MODULE(_modalbench, m) {
         r = solver->solve(scene, mesh, opt);
       }
       return mb::to_json(scene, backend, mesh, r).dump(2);
+    });
+  });
+  // The document `modalbench rom` writes, as text.
+  m.def("_rom", [](const mb::Scene& scene, const std::string& backend, const std::string& mesh_spec,
+                   const std::vector<std::array<double, 2>>& inputs, const std::vector<std::array<double, 2>>& outputs,
+                   int modes, double zeta, bool static_correction) {
+    return translating([&] {
+      const mb::Solver* solver = nullptr;
+      try {
+        solver = &registry().get(backend);
+      } catch (const std::invalid_argument& e) {
+        throw mb::InputError("rom()", "backend", e.what());
+      }
+      std::optional<mb::Discretization> mesh;
+      if (!mesh_spec.empty()) mesh = mb::Discretization::parse(mesh_spec);
+      mb::RomRequest rq;
+      rq.inputs = inputs;
+      rq.outputs = outputs;
+      rq.modes = modes;
+      rq.zeta = zeta;
+      rq.static_correction = static_correction;
+      mb::StateSpaceModel model;
+      {
+        py::gil_scoped_release unlocked;
+        model = mb::export_rom(*solver, scene, mesh, rq);
+      }
+      return mb::to_json(model).dump(2);
     });
   });
 }

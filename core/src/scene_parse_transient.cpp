@@ -8,7 +8,8 @@ namespace modalbench::scene_detail {
 
 namespace {
 
-std::vector<double> number_array(const Reader& r, const toml::table& t, const std::string& where, const std::string& key) {
+std::vector<double> number_array(const Reader& r, const toml::table& t, const std::string& where,
+                                 const std::string& key) {
   const toml::node* n = t.get(key);
   if (!n) r.fail(Reader::join(where, key), "missing key");
   const toml::array* a = n->as_array();
@@ -30,17 +31,27 @@ void read_load(const Reader& r, const toml::table& t, TransientRequest& tr) {
     tr.factor = number_array(r, *tab, where + ".load", "factor");
   } else {
     const std::string name = r.string(t, where, "load");
-    if (name == "step") tr.load = TransientRequest::Load::Step;
-    else if (name == "impulse") tr.load = TransientRequest::Load::Impulse;
-    else if (name == "ramp") tr.load = TransientRequest::Load::Ramp;
-    else if (name == "harmonic") tr.load = TransientRequest::Load::Harmonic;
-    else r.fail(where + ".load", fmt::format("unknown '{}' (step, impulse, ramp, harmonic, or a table of time and factor)", name));
+    if (name == "step")
+      tr.load = TransientRequest::Load::Step;
+    else if (name == "impulse")
+      tr.load = TransientRequest::Load::Impulse;
+    else if (name == "ramp")
+      tr.load = TransientRequest::Load::Ramp;
+    else if (name == "harmonic")
+      tr.load = TransientRequest::Load::Harmonic;
+    else
+      r.fail(where + ".load",
+             fmt::format("unknown '{}' (step, impulse, ramp, harmonic, or a table of time and factor)", name));
   }
   const bool ramp = tr.load == TransientRequest::Load::Ramp, harmonic = tr.load == TransientRequest::Load::Harmonic;
-  if (ramp) tr.rise = r.number(t, where, "rise");
-  else if (t.get("rise")) r.fail(where + ".rise", "only a ramp has a rise time");
-  if (harmonic) tr.omega = r.number(t, where, "omega");
-  else if (t.get("omega")) r.fail(where + ".omega", "only a harmonic load has a circular frequency");
+  if (ramp)
+    tr.rise = r.number(t, where, "rise");
+  else if (t.get("rise"))
+    r.fail(where + ".rise", "only a ramp has a rise time");
+  if (harmonic)
+    tr.omega = r.number(t, where, "omega");
+  else if (t.get("omega"))
+    r.fail(where + ".omega", "only a harmonic load has a circular frequency");
 }
 
 void read_damping(const Reader& r, const toml::table& t, TransientRequest& tr) {

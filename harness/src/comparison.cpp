@@ -267,10 +267,12 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
     SceneComparison c;
     // The time history is not compared (yet): its timed runs would charge it to the modes.
     Scene scene = input;
+    c.transients = transient_runs(input, registry, opt);
+    c.transient = input.request.transient;
     if (scene.request.transient) {
       scene.request.transient.reset();
-      c.notes.push_back("the scene's time history ([request.transient]) is not compared here: `modalbench solve` gives "
-                        "it, with its truncation estimate");
+      c.notes.push_back("the scene's time history ([request.transient]) is not in the timed runs: each back-end's "
+                        "default solve of it is shown in its own section");
     }
     c.scene = scene;
     for (const Solver* s : registry.all()) {

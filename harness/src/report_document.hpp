@@ -62,6 +62,9 @@ std::string plot_script(Context& ctx, const std::string& name, const std::string
                         const std::vector<std::pair<std::string, std::string>>& data, const std::string& size = "760,460");
 std::string data_path(const Context& ctx, const std::string& file);
 
+/// The time-history section of a scene with [request.transient] (report_transient.cpp).
+void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid);
+
 /// The mode-shape section: MAC matrices and overlaid shapes (report_shapes.cpp).
 void write_shapes(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid);
 

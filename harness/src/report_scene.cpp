@@ -322,6 +322,7 @@ void write_scene(Doc& doc, const SceneComparison& c, Context& ctx) {
   write_shapes(doc, c, ctx, sid);
   write_frf(doc, c, ctx, sid);
   write_deflections(doc, c, ctx, sid);
+  write_transient(doc, c, ctx, sid);
 }
 
 }  // namespace modalbench::report_detail

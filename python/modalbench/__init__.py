@@ -19,7 +19,7 @@ import numpy as np
 from . import _modalbench
 from ._toml import to_toml
 
-__all__ = ["InputError", "Scene", "Result", "load_scene", "backends", "solve", "study"]
+__all__ = ["InputError", "Scene", "Result", "ReducedModel", "load_scene", "backends", "solve", "rom", "study"]
 
 
 class InputError(ValueError):
@@ -171,3 +171,56 @@ def _option_text(v):
 
 
 from .study import study  # noqa: E402  (needs the names above)
+
+
+class ReducedModel:
+    """A reduced-order state-space model (`rom`): A, B, C, D as NumPy arrays, with the labels and
+    units of its states, inputs and outputs, and its H-infinity check (`as_dict["check"]`)."""
+
+    def __init__(self, doc):
+        self.as_dict = doc
+        self.status = doc["status"]
+        self.message = doc["message"]
+        for k in "ABCD":
+            rows = doc[k]
+            setattr(self, k, np.array(rows, dtype=float) if rows else np.zeros((0, 0)))
+        self.states, self.inputs, self.outputs = doc["states"], doc["inputs"], doc["outputs"]
+        self.omega_rad_s = np.array(doc["omega_rad_s"], dtype=float)
+        self.hinf_error = _num(doc["check"]["hinf_error_m_per_n"])
+        self.note = doc["note"]
+
+    @property
+    def ok(self):
+        return self.status == "success"
+
+    def to_scipy(self):
+        """scipy.signal.StateSpace(A, B, C, D) (SciPy needed)."""
+        from scipy import signal
+        return signal.StateSpace(self.A, self.B, self.C, self.D)
+
+    def __repr__(self):
+        return f"ReducedModel({len(self.states)} states, {len(self.inputs)} inputs, {len(self.outputs)} outputs: {self.status})"
+
+
+def _point(p, scene, what):
+    if isinstance(p, (int, float)):
+        return (float(p), 0.0)
+    p = tuple(float(v) for v in p)
+    if len(p) == 1:
+        return (p[0], 0.0)
+    if len(p) != 2:
+        raise _input_error(f"rom(): {what}: a point is x (beam) or (x, y) (plate), got {p}", scene.source)
+    return p
+
+
+def rom(scene, backend, inputs, outputs, modes=12, mesh=None, zeta=0.0, static_correction=True):
+    """The reduced-order state-space model of `scene` (as `modalbench rom`): unit forces Fz at
+    `inputs`, w, velocity and acceleration at `outputs` (points: x, or (x, y) on a plate), `modes`
+    modes of `backend` on `mesh` (None: its default, refined to the scene's tolerance)."""
+    if not isinstance(scene, Scene):
+        raise TypeError("rom() takes a modalbench.Scene (load_scene or Scene.from_dict)")
+    ins = [_point(p, scene, "inputs") for p in inputs]
+    outs = [_point(p, scene, "outputs") for p in outputs]
+    text = _modalbench._rom(scene._native, str(backend), "" if mesh is None else str(mesh), ins, outs, int(modes),
+                            float(zeta), bool(static_correction))
+    return ReducedModel(json.loads(text))

@@ -227,3 +227,21 @@ BOOST_AUTO_TEST_CASE(short_of_memory_is_resource_limit_never_a_crash) {
   BOOST_TEST(run("solve " + beam + " --max-memory -1").status == 2);
   BOOST_TEST(run("solve " + beam + " --max-time nan").status == 2);
 }
+
+// `modalbench rom`: one JSON document with A (2N x 2N), B, C (w, velocity, acceleration per output)
+// and D; a point off the body is named with its option.
+BOOST_AUTO_TEST_CASE(rom_writes_a_state_space_model) {
+  const Run r = run("rom " + scene("beam_step_load.toml") + " --inputs 1.0 --outputs 0.5 --outputs 1.5 --modes 4", false);
+  BOOST_TEST_REQUIRE(r.status == 0, r.out);
+  const auto doc = nlohmann::json::parse(r.out);
+  BOOST_TEST(doc["A"].size() == 8u);
+  BOOST_TEST(doc["B"].size() == 8u);
+  BOOST_TEST(doc["B"][0].size() == 1u);
+  BOOST_TEST(doc["C"].size() == 6u);
+  BOOST_TEST(doc["D"].size() == 6u);
+  BOOST_TEST(doc["static_correction"].get<bool>());
+  BOOST_TEST(doc["outputs"][2].get<std::string>().find("dw/dt") == 0u);
+  const Run bad = run("rom " + scene("beam_step_load.toml") + " --inputs 3.0 --outputs 0.5");
+  BOOST_TEST(bad.status == 2);
+  BOOST_TEST(bad.out.find("--inputs") != std::string::npos, bad.out);
+}

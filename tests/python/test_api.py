@@ -204,3 +204,32 @@ def test_a_transient_comes_as_arrays_and_peaks_at_twice_the_statics():
     assert abs(peak["w"] - twice) <= est * abs(peak["w"])
     assert abs(peak["time_s"] - T1 / 2) <= 1e-6 * T1
     assert abs(w[0, 50] - twice) <= est * abs(twice)  # t = T1 / 2 is on the output grid
+
+
+def test_a_reduced_model_has_the_static_flexibility_as_its_dc_gain():
+    # A simply supported Euler-Bernoulli beam: w(x) under a unit force at a, x <= a:
+    # b x (L^2 - b^2 - x^2) / (6 EI L), b = L - a (the outputs lie on that side of the input).
+    L, EI = 1.0, 2.1e11 * 0.1**4 / 12
+    s = mb.Scene.from_dict({
+        "scene": {"name": "rom", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
+        "geometry": {"length": L, "width": 0.1, "height": 0.1},
+        "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
+        "supports": {"x0": "pinned", "xL": "pinned"},
+    })
+    m = mb.rom(s, "exact", inputs=[0.7], outputs=[0.2, 0.5], modes=6)
+    assert m.ok, m.message
+    assert m.A.shape == (12, 12) and m.B.shape == (12, 1) and m.C.shape == (6, 12) and m.D.shape == (6, 1)
+    dc = m.D - m.C @ np.linalg.solve(m.A, m.B)
+    b = L - 0.7
+    for o, x in enumerate([0.2, 0.5]):
+        ref = b * x * (L**2 - b**2 - x**2) / (6 * EI * L)
+        assert abs(dc[o, 0] / ref - 1) < 1e-10
+    with pytest.raises(mb.InputError):
+        mb.rom(s, "exact", inputs=[1.5], outputs=[0.5])
+
+
+def test_a_reduced_model_goes_to_scipy():
+    signal = pytest.importorskip("scipy.signal")
+    m = mb.rom(mb.load_scene(SCENES / "beam_step_load.toml"), "exact", inputs=[1.0], outputs=[0.5], modes=4)
+    sys = m.to_scipy()
+    assert isinstance(sys, signal.StateSpace) and sys.A.shape == (8, 8)

@@ -80,7 +80,8 @@ BOOST_AUTO_TEST_CASE(midspan_step_reaches_twice_the_static_deflection_at_half_th
     BOOST_TEST(t.error_estimate <= 1e-5);
     const double peak = t.peaks[0].w;
     BOOST_TEST(std::abs(peak - 2 * kStatic) <= t.error_estimate * std::abs(peak) + 1e-12 * std::abs(peak),
-               "peak " << peak << " vs " << 2 * kStatic << ", estimate " << t.error_estimate << ", " << t.modes_used << " modes");
+               "peak " << peak << " vs " << 2 * kStatic << ", estimate " << t.error_estimate << ", " << t.modes_used
+                       << " modes");
     BOOST_TEST(std::abs(t.peaks[0].time_s - kT1 / 2) <= 1e-6 * kT1, t.peaks[0].time_s << " vs " << kT1 / 2);
     // At rest again at one period (sample 200): the midspan, within the truncation estimate.
     const std::size_t w = 0;  // components of a bending beam: w, theta_y
@@ -91,17 +92,19 @@ BOOST_AUTO_TEST_CASE(midspan_step_reaches_twice_the_static_deflection_at_half_th
 BOOST_AUTO_TEST_CASE(a_long_damped_history_ends_at_the_statics) {
   const double zeta = 0.1, duration = 30 * kT1;
   for (const bool correction : {true, false}) {
-    const std::string tr = fmt::format("duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = {} }}\n"
-                                       "static_correction = {}",
-                                       duration, kT1 / 20, zeta, correction);
+    const std::string tr = fmt::format(
+        "duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = {} }}\n"
+        "static_correction = {}",
+        duration, kT1 / 20, zeta, correction);
     const Result r = solve(beam(tr, 1e-5), "exact");
     BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
     const Transient& t = r.transient;
     const double decay = std::exp(-zeta * kW1 * duration);
     for (std::size_t p = 0; p < 2; ++p) {
       const double end = t.values[p][0].back(), stat = r.deflections[p].w;
-      BOOST_TEST(std::abs(end - stat) <= (t.error_estimate + 2 * decay) * std::abs(t.peaks[0].w) + 1e-12 * std::abs(stat),
-                 "probe " << p << ": " << end << " vs " << stat);
+      BOOST_TEST(
+          std::abs(end - stat) <= (t.error_estimate + 2 * decay) * std::abs(t.peaks[0].w) + 1e-12 * std::abs(stat),
+          "probe " << p << ": " << end << " vs " << stat);
     }
   }
 }
@@ -157,7 +160,8 @@ BOOST_AUTO_TEST_CASE(discretized_back_ends_converge_to_the_peak) {
 
 BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   const std::string ok = "duration = 0.1\nstep = 0.001\nload = \"step\"";
-  expect_input_error(beam("duration = 0.1\nstep = 0.2\nload = \"step\"", 1e-3), "request.transient.step", "must not exceed");
+  expect_input_error(beam("duration = 0.1\nstep = 0.2\nload = \"step\"", 1e-3), "request.transient.step",
+                     "must not exceed");
   expect_input_error(beam("duration = 0.1\nstep = 0.001\nload = \"ramp\"", 1e-3), "request.transient.rise", "missing");
   expect_input_error(beam("duration = 0.1\nstep = 0.001\nload = \"step\"\nrise = 0.1", 1e-3), "request.transient.rise",
                      "only a ramp");
@@ -184,7 +188,8 @@ BOOST_AUTO_TEST_CASE(thin_plate_13T_undamped_reaches_twice_its_static_deflection
   opt.estimate_error = false;
   const Result r = registry().get("exact").solve(s, Discretization{}, opt);
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
-  const double D = 2e11 * std::pow(0.05, 3) / (12 * (1 - 0.09)), w11 = 2 * M_PI * M_PI / 100 * std::sqrt(D / (8000 * 0.05));
+  const double D = 2e11 * std::pow(0.05, 3) / (12 * (1 - 0.09)),
+               w11 = 2 * M_PI * M_PI / 100 * std::sqrt(D / (8000 * 0.05));
   const double twice = 2 * r.deflections[0].w;
   BOOST_TEST(std::abs(twice / -3.548871e-3 - 1) <= 3e-7);  // the statics against the published-precision value
   const TransientPeak& p = r.transient.peaks[0];

@@ -14,11 +14,16 @@ namespace modalbench {
 
 std::string to_string(TransientRequest::Load l) {
   switch (l) {
-    case TransientRequest::Load::Step: return "step";
-    case TransientRequest::Load::Impulse: return "impulse";
-    case TransientRequest::Load::Ramp: return "ramp";
-    case TransientRequest::Load::Harmonic: return "harmonic";
-    case TransientRequest::Load::Table: return "table";
+    case TransientRequest::Load::Step:
+      return "step";
+    case TransientRequest::Load::Impulse:
+      return "impulse";
+    case TransientRequest::Load::Ramp:
+      return "ramp";
+    case TransientRequest::Load::Harmonic:
+      return "harmonic";
+    case TransientRequest::Load::Table:
+      return "table";
   }
   return "?";
 }
@@ -26,11 +31,21 @@ std::string to_string(TransientRequest::Load l) {
 LoadFunction LoadFunction::of(const TransientRequest& rq) {
   LoadFunction g;
   switch (rq.load) {
-    case TransientRequest::Load::Step: g.time = {0.0}, g.factor = {1.0}; break;
-    case TransientRequest::Load::Ramp: g.time = {0.0, rq.rise}, g.factor = {0.0, 1.0}; break;
-    case TransientRequest::Load::Table: g.time = rq.time, g.factor = rq.factor; break;
-    case TransientRequest::Load::Impulse: g.kind = Kind::Impulse; break;
-    case TransientRequest::Load::Harmonic: g.kind = Kind::Harmonic, g.omega = rq.omega; break;
+    case TransientRequest::Load::Step:
+      g.time = {0.0}, g.factor = {1.0};
+      break;
+    case TransientRequest::Load::Ramp:
+      g.time = {0.0, rq.rise}, g.factor = {0.0, 1.0};
+      break;
+    case TransientRequest::Load::Table:
+      g.time = rq.time, g.factor = rq.factor;
+      break;
+    case TransientRequest::Load::Impulse:
+      g.kind = Kind::Impulse;
+      break;
+    case TransientRequest::Load::Harmonic:
+      g.kind = Kind::Harmonic, g.omega = rq.omega;
+      break;
   }
   return g;
 }
@@ -49,9 +64,12 @@ double stretch_slope(const LoadFunction& g, std::size_t k) {
 
 double LoadFunction::value(double t) const {
   switch (kind) {
-    case Kind::Impulse: return 0.0;
-    case Kind::Harmonic: return std::sin(omega * t);
-    case Kind::PiecewiseLinear: break;
+    case Kind::Impulse:
+      return 0.0;
+    case Kind::Harmonic:
+      return std::sin(omega * t);
+    case Kind::PiecewiseLinear:
+      break;
   }
   const std::size_t k = stretch_of(time, t);
   return factor[k] + stretch_slope(*this, k) * (t - time[k]);
@@ -59,28 +77,40 @@ double LoadFunction::value(double t) const {
 
 double LoadFunction::slope(double t) const {
   switch (kind) {
-    case Kind::Impulse: return 0.0;
-    case Kind::Harmonic: return omega * std::cos(omega * t);
-    case Kind::PiecewiseLinear: break;
+    case Kind::Impulse:
+      return 0.0;
+    case Kind::Harmonic:
+      return omega * std::cos(omega * t);
+    case Kind::PiecewiseLinear:
+      break;
   }
   return stretch_slope(*this, stretch_of(time, t));
 }
 
 std::string LoadFunction::describe() const {
   switch (kind) {
-    case Kind::Impulse: return "an impulse at t = 0 (the loads in N s)";
-    case Kind::Harmonic: return fmt::format("sin({:.6g} t) (rad/s), from rest", omega);
-    case Kind::PiecewiseLinear: break;
+    case Kind::Impulse:
+      return "an impulse at t = 0 (the loads in N s)";
+    case Kind::Harmonic:
+      return fmt::format("sin({:.6g} t) (rad/s), from rest", omega);
+    case Kind::PiecewiseLinear:
+      break;
   }
-  if (time.size() == 1) return fmt::format("a step to {:.6g} times the loads at t = 0", factor[0]);
-  return fmt::format("piecewise linear through {} points, {:.6g} after {:.6g} s", time.size(), factor.back(), time.back());
+  if (time.size() == 1)
+    return factor[0] == 1.0 ? "a step: the loads switched on at t = 0"
+                            : fmt::format("a step: {:.6g} times the loads from t = 0", factor[0]);
+  return fmt::format("piecewise linear through {} points, {:.6g} after {:.6g} s", time.size(), factor.back(),
+                     time.back());
 }
 
 double damping_coefficient(const TransientRequest& rq, double omega) {
   switch (rq.damping) {
-    case TransientRequest::Damping::None: return 0.0;
-    case TransientRequest::Damping::Modal: return 2.0 * rq.zeta * omega;
-    case TransientRequest::Damping::Rayleigh: return rq.alpha + rq.beta * omega * omega;
+    case TransientRequest::Damping::None:
+      return 0.0;
+    case TransientRequest::Damping::Modal:
+      return 2.0 * rq.zeta * omega;
+    case TransientRequest::Damping::Rayleigh:
+      return rq.alpha + rq.beta * omega * omega;
   }
   return 0.0;
 }
@@ -117,10 +147,12 @@ Free free_response(double omega, double c, double x0, double v0, double tau) {
 
 ModalResponse::ModalResponse(double omega, double c, const LoadFunction& g) : omega_(omega), c_(c), g_(g) {
   if (!(omega >= 0) || !(c >= 0) || !std::isfinite(omega) || !std::isfinite(c))
-    throw std::invalid_argument(fmt::format("modal response: omega {} and damping {} must be finite and >= 0", omega, c));
+    throw std::invalid_argument(
+        fmt::format("modal response: omega {} and damping {} must be finite and >= 0", omega, c));
   if (g_.kind != LoadFunction::Kind::PiecewiseLinear) return;
   knots_.push_back({0.0, 0.0});
-  for (std::size_t k = 0; k + 1 < g_.time.size(); ++k) knots_.push_back(advance(knots_.back(), g_.time[k], g_.time[k + 1]));
+  for (std::size_t k = 0; k + 1 < g_.time.size(); ++k)
+    knots_.push_back(advance(knots_.back(), g_.time[k], g_.time[k + 1]));
 }
 
 ModalResponse::State ModalResponse::advance(const State& s, double t0, double t) const {
@@ -135,7 +167,8 @@ ModalResponse::State ModalResponse::advance(const State& s, double t0, double t)
     const Free h = free_response(omega_, c_, s.q - qp0, s.v - vp, tau);
     return {h.q + qp0 + sl * tau / w2, h.v + vp};
   }
-  if (c_ == 0) return {s.q + s.v * tau + p0 * tau * tau / 2 + sl * tau * tau * tau / 6, s.v + p0 * tau + sl * tau * tau / 2};
+  if (c_ == 0)
+    return {s.q + s.v * tau + p0 * tau * tau / 2 + sl * tau * tau * tau / 6, s.v + p0 * tau + sl * tau * tau / 2};
   // A rigid mode with damping: the velocity u' + c u = p0 + sl tau, then its integral.
   const double u0p = (p0 - sl / c_) / c_;
   const double decay = -std::expm1(-c_ * tau);  // 1 - e^{-c tau}
@@ -163,8 +196,10 @@ ModalResponse::State ModalResponse::at(double t) const {
       const Free h = free_response(omega_, c_, 0.0, 1.0, t);
       return {h.q, h.v};
     }
-    case LoadFunction::Kind::Harmonic: return harmonic(t);
-    case LoadFunction::Kind::PiecewiseLinear: break;
+    case LoadFunction::Kind::Harmonic:
+      return harmonic(t);
+    case LoadFunction::Kind::PiecewiseLinear:
+      break;
   }
   const std::size_t k = stretch_of(g_.time, t);
   return advance(knots_[k], g_.time[k], t);

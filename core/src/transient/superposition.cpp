@@ -26,6 +26,8 @@ struct ModalBasis {
   int computed = 0;  ///< modes the back-end gave
   int used = 0;      ///< modes superposed (no cluster of repeated frequencies split)
   int rigid = 0;
+  double w(int n) const { return omega[static_cast<std::size_t>(n)]; }
+  double share(int n, std::size_t c, std::size_t j) const { return a[static_cast<std::size_t>(n)][c][j]; }
 };
 
 /// A modes count no larger than m that splits no repeated frequency.
@@ -47,7 +49,8 @@ ModalBasis basis_of(const Result& r, std::size_t probes, const std::vector<LoadP
     const auto& phi = ms.values[static_cast<std::size_t>(n)];
     double P = 0;
     for (std::size_t c = 0; c < ms.components.size(); ++c)
-      for (std::size_t i = 0; i < loads.size(); ++i) P += loads[i].weight[static_cast<std::size_t>(ms.components[c])] * phi[c][probes + i];
+      for (std::size_t i = 0; i < loads.size(); ++i)
+        P += loads[i].weight[static_cast<std::size_t>(ms.components[c])] * phi[c][probes + i];
     std::vector<std::vector<double>> an(ms.components.size(), std::vector<double>(probes));
     for (std::size_t c = 0; c < ms.components.size(); ++c)
       for (std::size_t j = 0; j < probes; ++j) an[c][j] = phi[c][j] * P;
@@ -74,7 +77,7 @@ std::vector<std::vector<double>> correction(const ModalBasis& b, int m, const st
   for (std::size_t k = 0; k < b.components.size(); ++k)
     for (std::size_t j = 0; j < c[k].size(); ++j) {
       double s = component_of((*statics)[j], b.components[k]);
-      for (int n = 0; n < m; ++n) s -= b.a[static_cast<std::size_t>(n)][k][j] / (b.omega[static_cast<std::size_t>(n)] * b.omega[static_cast<std::size_t>(n)]);
+      for (int n = 0; n < m; ++n) s -= b.share(n, k, j) / (b.w(n) * b.w(n));
       c[k][j] = s;
     }
   return c;
@@ -102,12 +105,13 @@ struct Context {
 std::pair<double, std::size_t> fine_grid(const Context& cx, const ModalBasis& b, std::string& note) {
   const double T = cx.rq.duration;
   double wmax = 0;
-  for (int n = 0; n < std::min(b.used + 1, b.computed); ++n) wmax = std::max(wmax, b.omega[static_cast<std::size_t>(n)]);
+  for (int n = 0; n < std::min(b.used + 1, b.computed); ++n) wmax = std::max(wmax, b.w(n));
   double dt = std::min(cx.rq.step, wmax > 0 ? 2 * M_PI / wmax / 8 : cx.rq.step);
   constexpr double kMaxSamples = 2e5;
   if (T / dt > kMaxSamples) {
     dt = T / kMaxSamples;
-    note = fmt::format("; the peak search samples every {:.3g} s (periods below {:.3g} s are under 8 samples)", dt, 8 * dt);
+    note = fmt::format("; the peak search samples every {:.3g} s (periods below {:.3g} s are under 8 samples)", dt,
+                       8 * dt);
   }
   const auto n = static_cast<std::size_t>(std::ceil(T / dt - 1e-9)) + 1;
   return {T / static_cast<double>(n - 1), n};
@@ -120,11 +124,11 @@ void histories(const Context& cx, const ModalBasis& b, const std::vector<std::ve
   for (std::size_t k = 0; k < K; ++k) out.time_s[k] = static_cast<double>(k) * cx.rq.step;
   out.values.assign(cx.probes, std::vector<std::vector<double>>(b.components.size(), std::vector<double>(K, 0.0)));
   for (int n = 0; n < b.used; ++n) {
-    const ModalResponse r(b.omega[static_cast<std::size_t>(n)], damping_coefficient(cx.rq, b.omega[static_cast<std::size_t>(n)]), cx.g);
+    const ModalResponse r(b.w(n), damping_coefficient(cx.rq, b.w(n)), cx.g);
     const std::vector<double> q = r.sample(cx.rq.step, K);
     for (std::size_t j = 0; j < cx.probes; ++j)
       for (std::size_t c = 0; c < b.components.size(); ++c) {
-        const double a = b.a[static_cast<std::size_t>(n)][c][j];
+        const double a = b.share(n, c, j);
         if (a != 0)
           for (std::size_t k = 0; k < K; ++k) out.values[j][c][k] += a * q[k];
       }
@@ -137,18 +141,19 @@ void histories(const Context& cx, const ModalBasis& b, const std::vector<std::ve
 }
 
 /// w at probe j and time t from the closed forms.
-double w_at(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr, std::size_t j, double t) {
+double w_at(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr, std::size_t j,
+            double t) {
   double w = corr[static_cast<std::size_t>(cx.w_index)][j] * cx.g.value(t);
   for (int n = 0; n < b.used; ++n) {
-    const double a = b.a[static_cast<std::size_t>(n)][static_cast<std::size_t>(cx.w_index)][j];
-    if (a != 0) w += a * ModalResponse(b.omega[static_cast<std::size_t>(n)], damping_coefficient(cx.rq, b.omega[static_cast<std::size_t>(n)]), cx.g).q(t);
+    const double a = b.share(n, static_cast<std::size_t>(cx.w_index), j);
+    if (a != 0) w += a * ModalResponse(b.w(n), damping_coefficient(cx.rq, b.w(n)), cx.g).q(t);
   }
   return w;
 }
 
 /// The extreme of s w(t) on [lo, hi] by golden section (the bracket from the fine grid).
-TransientPeak refine_peak(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr, std::size_t j,
-                          double lo, double hi, TransientPeak best) {
+TransientPeak refine_peak(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr,
+                          std::size_t j, double lo, double hi, TransientPeak best) {
   const double s = best.w >= 0 ? 1.0 : -1.0, r = 0.5 * (std::sqrt(5.0) - 1);
   double a = lo, d = hi, x1 = d - r * (d - a), x2 = a + r * (d - a);
   double f1 = s * w_at(cx, b, corr, j, x1), f2 = s * w_at(cx, b, corr, j, x2);
@@ -172,16 +177,17 @@ void peaks_and_estimate(const Context& cx, Round& rd, const std::vector<std::vec
   const auto wi = static_cast<std::size_t>(cx.w_index);
   std::vector<std::vector<double>> full(cx.probes, std::vector<double>(N, 0.0)), diff = full, next = full;
   for (int n = 0; n < std::min(b.used + 1, b.computed); ++n) {
-    const double om = b.omega[static_cast<std::size_t>(n)];
+    const double om = b.w(n);
     const std::vector<double> q = ModalResponse(om, damping_coefficient(cx.rq, om), cx.g).sample(dt, N);
     for (std::size_t j = 0; j < cx.probes; ++j) {
-      const double a = b.a[static_cast<std::size_t>(n)][wi][j];
+      const double a = b.share(n, wi, j);
       if (a == 0) continue;
       for (std::size_t i = 0; i < N; ++i) {
         if (n < b.used) full[j][i] += a * q[i];
         if (n >= half && n < b.used) diff[j][i] += a * q[i];
         // The first neglected mode, less its static share where the correction carries it.
-        if (n == b.used) next[j][i] = a * (q[i] - (cx.statics && om > 0 ? cx.g.value(static_cast<double>(i) * dt) / (om * om) : 0.0));
+        if (n == b.used)
+          next[j][i] = a * (q[i] - (cx.statics && om > 0 ? cx.g.value(static_cast<double>(i) * dt) / (om * om) : 0.0));
       }
     }
   }
@@ -211,9 +217,11 @@ Round one_round(const Context& cx, const ModalSolve& solve, int modes, Result& r
   const std::vector<LoadPoint> loads = load_points(cx.scene, modes + 1);
   const Result r = solve(transient_modal_scene(cx.scene, modes));
   if (severity(r.summary.status) > severity(Status::NotConverged) || r.mode_shapes.empty())
-    throw std::runtime_error(fmt::format("the modal solve with {} modes was {}: {}", modes + 1, to_string(r.summary.status),
+    throw std::runtime_error(fmt::format("the modal solve with {} modes was {}: {}", modes + 1,
+                                         to_string(r.summary.status),
                                          r.summary.message.empty() ? "no mode shapes" : r.summary.message));
-  if (r.summary.status == Status::NotConverged) result.summary.raise(Status::NotConverged, "transient: its modal solve: " + r.summary.message);
+  if (r.summary.status == Status::NotConverged)
+    result.summary.raise(Status::NotConverged, "transient: its modal solve: " + r.summary.message);
   Round rd;
   rd.basis = basis_of(r, cx.probes, loads, modes + 1);
   rd.out.components = rd.basis.components;
@@ -248,13 +256,18 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
   if (rq.static_correction) {
     if (rq.load == TransientRequest::Load::Impulse)
       sc_note = "no static correction (an impulse leaves no static load)";
-    else if (result.deflections.size() != scene.request.probes.size() || severity(sum.status) >= severity(Status::NumericalIssue))
+    else if (result.deflections.size() != scene.request.probes.size() ||
+             severity(sum.status) >= severity(Status::NumericalIssue))
       sc_note = "no static correction: the statics at the probes failed or were not computed (" + sum.message + ")";
     else
       statics = &result.deflections;
   }
   const std::vector<int> comps = scene.shape_components();
-  Context cx{scene, rq, LoadFunction::of(rq), statics, scene.request.probes.size(),
+  Context cx{scene,
+             rq,
+             LoadFunction::of(rq),
+             statics,
+             scene.request.probes.size(),
              static_cast<int>(std::find(comps.begin(), comps.end(), 2) - comps.begin())};
   int modes = transient_first_modes(scene);
   double planned = 0;
@@ -284,15 +297,18 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
   out.error_estimate = rd.estimate;
   out.load = cx.g.describe();
   out.note = fmt::format(
-      "modal superposition of {} modes ({} rigid), each integrated exactly for the load's time function; {}; truncation "
+      "modal superposition of {} modes ({} rigid), each integrated exactly for the load's time function; {}; "
+      "truncation "
       "estimate: the larger of the change when the modes are halved and the first neglected mode's response{}",
-      out.modes_used, out.rigid_modes, out.static_correction ? "static correction (mode acceleration) from the statics at the probes" : sc_note,
+      out.modes_used, out.rigid_modes,
+      out.static_correction ? "static correction (mode acceleration) from the statics at the probes" : sc_note,
       rd.resolution_note);
   if (rd.basis.used == rd.basis.computed) out.note += fmt::format("; all {} modes of the model", rd.basis.computed);
   if (rd.estimate > scene.request.tolerance)
-    sum.raise(Status::NotConverged, fmt::format("transient: truncation error estimate {:.2g} with {} modes exceeds the tolerance "
-                                                "{:.2g}",
-                                                rd.estimate, out.modes_used, scene.request.tolerance));
+    sum.raise(Status::NotConverged,
+              fmt::format("transient: truncation error estimate {:.2g} with {} modes exceeds the tolerance "
+                          "{:.2g}",
+                          rd.estimate, out.modes_used, scene.request.tolerance));
   result.transient = std::move(out);
   sum.timings_s.transient = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return planned;

@@ -103,6 +103,13 @@ struct ModelLimit {
   double model_error_uncertainty = kNaN;  ///< relative: the limit's GCI plus the best reference's
 };
 
+/// A back-end's default solve of a scene's time history ([request.transient]): the mesh refined to
+/// the scene's tolerance, the whole request.
+struct TransientRun {
+  std::string backend;
+  Result result;
+};
+
 struct SceneComparison {
   Scene scene;
   Reference reference;  ///< the scene's theory (exact), else the best Richardson limit: MAC pairing, tables
@@ -111,6 +118,10 @@ struct SceneComparison {
   Reference best;              ///< the highest-fidelity reference: 3D (CalculiX, Richardson) or `reference`
   std::string best_label;      ///< e.g. "3D elasticity: CalculiX C3D20R, Richardson of 4 meshes (GCI 2e-4)"
   std::vector<ModelLimit> limits;  ///< one per back-end and kind of limit
+  /// Where the scene asks for a time history (left out of `scene`, whose runs are timed): the
+  /// request, and each back-end's default solve of it.
+  std::optional<TransientRequest> transient;
+  std::vector<TransientRun> transients;
 };
 
 struct CompareOptions {
@@ -127,6 +138,10 @@ struct CompareOptions {
   /// The clock the timings read, seconds (tests inject one; default: std::chrono::steady_clock).
   std::function<double()> clock;
 };
+
+/// Each back-end's default solve (refined to the tolerance, within twice the budget) of a scene
+/// with a time history (transient_runs.cpp); empty for a scene without one.
+std::vector<TransientRun> transient_runs(const Scene& scene, const Registry& registry, const CompareOptions& opt);
 
 /// Runs the comparison on every scene. A back-end that throws or fails becomes a run marked
 /// failed with its message, never a crash.
