@@ -72,6 +72,7 @@ class SolvePipeline {
   bool refinement_step(RefinementWindow& w, double& last_estimate, double& last_time);
   void keep_refinement_solves(RefinementWindow& w);
   Result solve_light(const Scene& sc, const Discretization& m) const;
+  void solve_into(const Scene& sc, const Discretization& m, Result& x) const;
   std::optional<Result> solve_optional(const Discretization& m) const;
   double since_start() const { return seconds_since(t0_); }
 
@@ -91,6 +92,9 @@ class SolvePipeline {
   std::optional<CoarserMesh> coarse_, coarser2_, coarser3_;
   double memory_limit_ = 0;
   bool refused_ = false;  ///< refused before starting (resource limits): nothing to account for
+  /// Why the statics were refused on a scene with a time history (its solves then go without
+  /// probes: solve_into); empty while they are not.
+  mutable std::string statics_refused_;
 
   Discretization final_mesh_;
   std::optional<Verdict> verdict_;
@@ -240,9 +244,42 @@ Result SolvePipeline::solve_light(const Scene& sc, const Discretization& m) cons
   const auto ts = Clock::now();
   Result x;
   x.summary.mesh = m.spec();
-  solver_.do_solve(sc, m, opt_, x);
+  solve_into(sc, m, x);
   x.summary.total_time_s = seconds_since(ts);
   return x;
+}
+
+/// The back-end's solve of `sc` into `x`. A time history needs only the modes: where the statics
+/// are refused (a free structure is a mechanism), this and every later solve go without the probes
+/// (statics_refused_ says why); anything else fails again without them.
+void SolvePipeline::solve_into(const Scene& sc, const Discretization& m, Result& x) const {
+  const bool drop = scene_.request.transient && !sc.request.probes.empty();
+  if (drop && !statics_refused_.empty()) {
+    Scene modes_only = sc;
+    modes_only.request.probes.clear();
+    solver_.do_solve(modes_only, m, opt_, x);
+    return;
+  }
+  const Result before = x;
+  std::string refused;
+  try {
+    solver_.do_solve(sc, m, opt_, x);
+    if (drop && x.summary.status == Status::InvalidInput) refused = x.summary.message;
+  } catch (const InputError& e) {
+    if (!drop) throw;
+    refused = e.what();
+  }
+  if (refused.empty()) return;
+  Result retry = before;
+  Scene modes_only = sc;
+  modes_only.request.probes.clear();
+  solver_.do_solve(modes_only, m, opt_, retry);
+  if (retry.summary.status == Status::InvalidInput) {
+    if (x.summary.status != Status::InvalidInput) throw InputError(scene_.source, "", refused);
+    return;  // not the statics: the first answer stands
+  }
+  x = std::move(retry);
+  statics_refused_ = refused;
 }
 
 /// The fourth mesh's solve: optional, so a failure only leaves the extrapolation with three.
@@ -386,7 +423,10 @@ void SolvePipeline::keep_refinement_solves(RefinementWindow& w) {
 void SolvePipeline::solve_request() {
   auto& sum = result_.summary;
   sum.mesh = final_mesh_.spec();
-  solver_.do_solve(scene_, final_mesh_, opt_, result_);
+  solve_into(scene_, final_mesh_, result_);
+  if (!statics_refused_.empty())
+    sum.warnings.push_back("statics not computed (" + statics_refused_ +
+                           "): the time history runs without the static correction");
   if (!missing_.empty()) {
     std::string what;
     for (const auto& m : missing_) what += (what.empty() ? "" : ", ") + m;

@@ -64,6 +64,42 @@ std::vector<std::string> row_of(const TransientRun& r) {
           secs_str(x.summary.total_time_s)};
 }
 
+/// The error of the peak against the modes used and the run time, every back-end, against the
+/// exact back-end's run with the most modes (its truncation the smallest).
+void write_mode_convergence(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
+  const TransientRun* ref = nullptr;
+  for (const TransientRun& r : c.transients)
+    if (r.backend == "exact" && !r.by_modes.empty()) ref = &r;
+  if (!ref) return;
+  const TransientRun::ByModes& best = ref->by_modes.back();
+  std::vector<Series> vs_modes, vs_time;
+  for (const TransientRun& r : c.transients) {
+    Series m{r.backend + " " + r.result.summary.mesh, {}, "linespoints"}, t = m;
+    for (const auto& p : r.by_modes) {
+      const double e = std::abs(p.peak_w / best.peak_w - 1);
+      if (&r == ref && &p == &best) continue;  // the reference itself
+      if (!(e > 0)) continue;
+      m.points.emplace_back(p.modes, e);
+      t.points.emplace_back(p.run_s, e);
+    }
+    vs_modes.push_back(std::move(m));
+    vs_time.push_back(std::move(t));
+  }
+  doc.para(fmt::format("The peak against the modes used (12, 24, 48, 96, each on the mesh the default solve kept), "
+                       "relative to the exact back-end's with {} modes: a discretized back-end levels off at its "
+                       "mesh's own error.",
+                       best.modes));
+  const std::string setup = "set logscale xy\nset format y '%.0e'\nset grid\nset ylabel 'relative error of the peak'\n";
+  if (auto svg = plot(ctx, sid + "_transient_modes", setup + "set title 'Peak error against modes used'\nset xlabel 'modes'\n",
+                      vs_modes);
+      !svg.empty())
+    doc.figure("plots/" + sid + "_transient_modes.svg", svg, "Relative error of the peak against the modes used");
+  if (auto svg = plot(ctx, sid + "_transient_time", setup + "set title 'Peak error against run time'\nset xlabel 'run time [s]'\n",
+                      vs_time);
+      !svg.empty())
+    doc.figure("plots/" + sid + "_transient_time.svg", svg, "Relative error of the peak against the run time of the whole solve");
+}
+
 }  // namespace
 
 void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
@@ -106,6 +142,7 @@ void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std
           series);
       !svg.empty())
     doc.figure("plots/" + sid + "_transient.svg", svg, "Time history of w at the first probe, every back-end overlaid");
+  write_mode_convergence(doc, c, ctx, sid);
 }
 
 }  // namespace modalbench::report_detail

@@ -108,6 +108,13 @@ struct ModelLimit {
 struct TransientRun {
   std::string backend;
   Result result;
+  /// The same mesh with a fixed number of modes (12, 24, 48, 96; the first round only): the peak
+  /// of w at the first probe, and the run time, for the error against modes used and run time.
+  struct ByModes {
+    int modes = 0;
+    double peak_w = 0, run_s = 0;
+  };
+  std::vector<ByModes> by_modes;
 };
 
 struct SceneComparison {
