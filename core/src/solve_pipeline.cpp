@@ -425,8 +425,8 @@ void SolvePipeline::solve_request() {
   sum.mesh = final_mesh_.spec();
   solve_into(scene_, final_mesh_, result_);
   if (!statics_refused_.empty())
-    sum.warnings.push_back("statics not computed (" + statics_refused_ +
-                           "): the time history runs without the static correction");
+    sum.warnings.push_back("not computed: static deflections (" + statics_refused_ +
+                           "); the time history runs without the static correction");
   if (!missing_.empty()) {
     std::string what;
     for (const auto& m : missing_) what += (what.empty() ? "" : ", ") + m;

@@ -28,10 +28,13 @@ const double kW1 = M_PI * M_PI / (kL * kL) * std::sqrt(kE * kI / (kRho * kA));
 const double kT1 = 2 * M_PI / kW1;
 const double kStatic = kF * kL * kL * kL / (48 * kE * kI);  // midspan, Euler-Bernoulli
 
-std::string beam(const std::string& transient, double tolerance) {
+/// A steel Euler-Bernoulli beam of length L and square-or-rectangular section b x h, on `ends`
+/// (both), under Fz = F at midspan, with probes at L/2 and `other`, and the transient table.
+std::string steel_beam(double L, double b, double h, const char* ends, double F, double other, double tolerance,
+                       const std::string& transient) {
   return fmt::format(R"(
 [scene]
-name = "ss-beam-step"
+name = "beam-step"
 kind = "beam"
 physics = "bending"
 theory = "euler-bernoulli"
@@ -44,18 +47,23 @@ E = {}
 nu = 0.3
 rho = {}
 [supports]
-x0 = "pinned"
-xL = "pinned"
+x0 = "{}"
+xL = "{}"
 [[loads]]
-x = 1.0
+x = {}
 Fz = {}
 [request]
-probes = [1.0, 0.5]
+probes = [{}, {}]
 tolerance = {}
 [request.transient]
 {}
 )",
-                     kL, kB, kH, kE, kRho, kF, tolerance, transient);
+                     L, b, h, kE, kRho, ends, ends, L / 2, F, L / 2, other, tolerance, transient);
+}
+
+/// The simply supported beam of the closed forms above.
+std::string beam(const std::string& transient, double tolerance) {
+  return steel_beam(kL, kB, kH, "pinned", kF, 0.5, tolerance, transient);
 }
 
 Result solve(const std::string& text, const std::string& backend, const std::string& mesh = "") {
@@ -173,7 +181,8 @@ BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   lossy.replace(lossy.find("nu = 0.3"), 8, "nu = 0.3\nloss_factor = 0.01");
   expect_input_error(lossy, "request.transient.damping", "no causal form");
   std::string no_probes = beam(ok, 1e-3);
-  no_probes.replace(no_probes.find("probes = [1.0, 0.5]"), 19, "");
+  const auto at = no_probes.find("probes = [");
+  no_probes.erase(at, no_probes.find('\n', at) - at);
   expect_input_error(no_probes, "request.transient", "needs request.probes");
 }
 
@@ -217,46 +226,19 @@ BOOST_AUTO_TEST_CASE(a_mode_without_w_has_zero_participation) {
 // moves as F t^2 / (2 m) plus the inertia-relief shape of a half-beam clamped at midspan under -F/L
 // with zero mean: w(L/2) - F t^2 / (2m) = F L^3 / (320 EI), w(0) - F t^2 / (2m) = -3 F L^3 / (640 EI).
 BOOST_AUTO_TEST_CASE(a_free_beam_accelerates_as_a_rigid_body_plus_its_inertia_relief) {
-  const double L = 1.0, b = 0.05, E = 2.1e11, rho = 7850.0, F = 100.0;
-  const double EI = E * std::pow(b, 4) / 12, m = rho * b * b * L;
-  const double w1 = 22.3733 * std::sqrt(EI / (rho * b * b)) / (L * L), duration = 40 * 2 * M_PI / w1;
-  const std::string text = fmt::format(R"(
-[scene]
-name = "free-beam"
-kind = "beam"
-physics = "bending"
-theory = "euler-bernoulli"
-[geometry]
-length = {}
-width = {}
-height = {}
-[material]
-E = {}
-nu = 0.3
-rho = {}
-[supports]
-x0 = "free"
-xL = "free"
-[[loads]]
-x = 0.5
-Fz = {}
-[request]
-probes = [0.5, 0.0]
-tolerance = 1e-6
-[request.transient]
-duration = {}
-step = {}
-load = "step"
-damping = {{ modal = 0.3 }}
-)",
-                                       L, b, b, E, rho, F, duration, duration / 100);
+  const double L = 1.0, b = 0.05, F = 100.0;
+  const double EI = kE * std::pow(b, 4) / 12, m = kRho * b * b * L;
+  const double w1 = 22.3733 * std::sqrt(EI / (kRho * b * b)) / (L * L), duration = 40 * 2 * M_PI / w1;
+  const std::string text = steel_beam(L, b, b, "free", F, 0.0, 1e-6,
+                                      fmt::format("duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = 0.3 }}",
+                                                  duration, duration / 100));
   const Result r = solve(text, "exact");
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   const Transient& t = r.transient;
   BOOST_TEST(t.rigid_modes == 2);
   BOOST_TEST(!t.static_correction);
   bool said = false;
-  for (const auto& w : r.summary.warnings) said = said || w.find("statics not computed") != std::string::npos;
+  for (const auto& w : r.summary.warnings) said = said || w.rfind("not computed: static deflections", 0) == 0;
   BOOST_TEST(said);
   const double rigid = F * duration * duration / (2 * m), slack = t.error_estimate * std::abs(t.peaks[0].w) + 1e-12 * rigid;
   const double mid = F * L * L * L / (320 * EI), end = -3 * F * L * L * L / (640 * EI);
