@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <new>
 #include <stdexcept>
 #include <utility>
@@ -262,21 +263,23 @@ void SolvePipeline::solve_into(const Scene& sc, const Discretization& m, Result&
   }
   const Result before = x;
   std::string refused;
+  std::exception_ptr thrown;
   try {
     solver_.do_solve(sc, m, opt_, x);
     if (drop && x.summary.status == Status::InvalidInput) refused = x.summary.message;
   } catch (const InputError& e) {
     if (!drop) throw;
     refused = e.what();
+    thrown = std::current_exception();
   }
   if (refused.empty()) return;
   Result retry = before;
   Scene modes_only = sc;
   modes_only.request.probes.clear();
   solver_.do_solve(modes_only, m, opt_, retry);
-  if (retry.summary.status == Status::InvalidInput) {
-    if (x.summary.status != Status::InvalidInput) throw InputError(scene_.source, "", refused);
-    return;  // not the statics: the first answer stands
+  if (retry.summary.status == Status::InvalidInput) {  // not the statics: the first answer stands
+    if (thrown) std::rethrow_exception(thrown);
+    return;
   }
   x = std::move(retry);
   statics_refused_ = refused;

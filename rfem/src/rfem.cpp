@@ -1,4 +1,5 @@
 #include "modalbench/rfem/rfem.hpp"
+#include "shared_supports.hpp"
 
 #include <fmt/format.h>
 
@@ -284,6 +285,8 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
   if (sys.n() == 0)
     throw InputError(mesh_source(s), "--mesh",
                      fmt::format("mesh {} is so coarse that the supports hold every DOF: refine it", mesh.spec()));
+  if (const std::string shared = detail::supports_sharing_an_element(s, s.is_beam() ? mesh.counts[0] : 0); !shared.empty())
+    sum.raise(Status::NotConverged, shared);
   sum.set_diagnostic("coordinates", static_cast<double>(sys.n()));
   sum.set_diagnostic("multipliers", static_cast<double>(sys.m()));
 
