@@ -251,7 +251,7 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
   const TransientRequest& rq = *scene.request.transient;
   auto& sum = result.summary;
   // The statics of the same mesh carry the static correction, where there are statics to carry.
-  std::string sc_note;
+  std::string sc_note = "no static correction (switched off)";
   const std::vector<Deflection>* statics = nullptr;
   if (rq.static_correction) {
     if (rq.load == TransientRequest::Load::Impulse)
@@ -298,16 +298,15 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
   out.load = cx.g.describe();
   out.note = fmt::format(
       "modal superposition of {} modes ({} rigid), each integrated exactly for the load's time function; {}; "
-      "truncation "
-      "estimate: the larger of the change when the modes are halved and the first neglected mode's response{}",
+      "truncation estimate: the larger of the change when the modes are halved and the first neglected mode's "
+      "response{}",
       out.modes_used, out.rigid_modes,
       out.static_correction ? "static correction (mode acceleration) from the statics at the probes" : sc_note,
       rd.resolution_note);
   if (rd.basis.used == rd.basis.computed) out.note += fmt::format("; all {} modes of the model", rd.basis.computed);
   if (rd.estimate > scene.request.tolerance)
     sum.raise(Status::NotConverged,
-              fmt::format("transient: truncation error estimate {:.2g} with {} modes exceeds the tolerance "
-                          "{:.2g}",
+              fmt::format("transient: truncation error estimate {:.2g} with {} modes exceeds the tolerance {:.2g}",
                           rd.estimate, out.modes_used, scene.request.tolerance));
   result.transient = std::move(out);
   sum.timings_s.transient = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
