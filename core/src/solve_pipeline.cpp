@@ -553,6 +553,10 @@ void SolvePipeline::finish() {
   for (const auto& d : result_.deflections)
     for (double v : {d.u, d.v, d.w, d.theta_x, d.theta_y, d.theta_z}) finite = finite && std::isfinite(v);
   for (const auto& f : result_.frf) finite = finite && std::isfinite(std::abs(f.receptance));
+  for (const auto& probe : result_.transient.values)
+    for (const auto& history : probe)
+      for (double v : history) finite = finite && std::isfinite(v);
+  for (const auto& p : result_.transient.peaks) finite = finite && std::isfinite(p.w) && std::isfinite(p.time_s);
   if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
   if (finite && severity(sum.status) < severity(Status::ResourceLimit))
     for (std::string& w : plausibility_warnings(scene_, result_)) sum.warnings.push_back(std::move(w));
