@@ -45,6 +45,15 @@ const mb::Registry& registry() {
   return reg;
 }
 
+/// The registry's back-end `name`; an unknown one is an InputError of `origin`'s argument `backend`.
+const mb::Solver& solver_named(const std::string& name, const char* origin) {
+  try {
+    return registry().get(name);
+  } catch (const std::invalid_argument& e) {
+    throw mb::InputError(origin, "backend", e.what());
+  }
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_modalbench, m) {
@@ -81,12 +90,7 @@ PYBIND11_MODULE(_modalbench, m) {
   m.def("_solve", [](const mb::Scene& scene, const std::string& backend, const std::string& mesh_spec,
                      const std::string& mass, const std::vector<std::pair<std::string, std::string>>& options) {
     return translating([&] {
-      const mb::Solver* solver = nullptr;
-      try {
-        solver = &registry().get(backend);
-      } catch (const std::invalid_argument& e) {
-        throw mb::InputError("solve()", "backend", e.what());
-      }
+      const mb::Solver* solver = &solver_named(backend, "solve()");
       mb::Discretization mesh;
       try {
         mesh = mesh_spec.empty() ? solver->default_mesh(scene) : mb::Discretization::parse(mesh_spec);
@@ -111,12 +115,7 @@ PYBIND11_MODULE(_modalbench, m) {
                    const std::vector<std::array<double, 2>>& inputs, const std::vector<std::array<double, 2>>& outputs,
                    int modes, double zeta, bool static_correction) {
     return translating([&] {
-      const mb::Solver* solver = nullptr;
-      try {
-        solver = &registry().get(backend);
-      } catch (const std::invalid_argument& e) {
-        throw mb::InputError("rom()", "backend", e.what());
-      }
+      const mb::Solver* solver = &solver_named(backend, "rom()");
       std::optional<mb::Discretization> mesh;
       if (!mesh_spec.empty()) mesh = mb::Discretization::parse(mesh_spec);
       mb::RomRequest rq;

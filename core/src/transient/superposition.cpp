@@ -212,10 +212,24 @@ void peaks_and_estimate(const Context& cx, Round& rd, const std::vector<std::vec
   rd.estimate = peak > 0 ? worst / peak : (worst > 0 ? kNotMeasured : 0.0);
 }
 
+/// The modal solve of `modes` + 1 modes with the shapes at the probes and at `loads`.
+Scene modal_scene(const Scene& scene, int modes, const std::vector<LoadPoint>& loads) {
+  Scene sub = scene;
+  ShapeRequest sr;
+  sr.points = scene.request.probes;
+  for (const LoadPoint& p : loads) sr.points.push_back(p.at);
+  sub.request.modes = modes + 1;
+  sub.request.shapes = sr;
+  sub.request.probes.clear();
+  sub.request.frf.reset();
+  sub.request.transient.reset();
+  return sub;
+}
+
 /// One round: the modal solve with `modes` + 1 modes, and everything from it.
 Round one_round(const Context& cx, const ModalSolve& solve, int modes, Result& result) {
   const std::vector<LoadPoint> loads = load_points(cx.scene, modes + 1);
-  const Result r = solve(transient_modal_scene(cx.scene, modes));
+  const Result r = solve(modal_scene(cx.scene, modes, loads));
   if (severity(r.summary.status) > severity(Status::NotConverged) || r.mode_shapes.empty())
     throw std::runtime_error(fmt::format("the modal solve with {} modes was {}: {}", modes + 1,
                                          to_string(r.summary.status),
@@ -231,16 +245,7 @@ Round one_round(const Context& cx, const ModalSolve& solve, int modes, Result& r
 }  // namespace
 
 Scene transient_modal_scene(const Scene& scene, int modes) {
-  Scene sub = scene;
-  ShapeRequest sr;
-  sr.points = scene.request.probes;
-  for (const LoadPoint& p : load_points(scene, modes + 1)) sr.points.push_back(p.at);
-  sub.request.modes = modes + 1;
-  sub.request.shapes = sr;
-  sub.request.probes.clear();
-  sub.request.frf.reset();
-  sub.request.transient.reset();
-  return sub;
+  return modal_scene(scene, modes, load_points(scene, modes + 1));
 }
 
 int transient_first_modes(const Scene& scene) { return std::max(12, scene.request.modes); }
