@@ -180,7 +180,12 @@ void print_transient(const mb::Scene& scene, const mb::Transient& tr, bool verbo
     std::cout << fmt::format("  peak {}: w = {:.8e} m at t = {:.8g} s\n",
                              scene.is_beam() ? fmt::format("x = {:g} m", at[0]) : fmt::format("({:g}, {:g}) m", at[0], at[1]),
                              tr.peaks[p].w, tr.peaks[p].time_s);
+    if (p < tr.moment_peaks.size())
+      std::cout << fmt::format("       My = {:.8e} N m at t = {:.8g} s\n", tr.moment_peaks[p].w, tr.moment_peaks[p].time_s);
   }
+  if (!tr.moments.empty())
+    std::cout << fmt::format("  moment histories: truncation estimate {:.2g} of the largest |My| peak\n",
+                             tr.moment_error_estimate);
   if (verbose) std::cout << "  transient: " << tr.note << " (histories: --json)\n";
 }
 

@@ -22,17 +22,25 @@ nlohmann::json transient_json(const Scene& scene, const Transient& tr) {
       e[component_name(tr.components[c])] = h;
     }
     e["peak"] = {{"w", num(tr.peaks[p].w)}, {"time_s", num(tr.peaks[p].time_s)}};
+    if (p < tr.moments.size()) {
+      json h = json::array();
+      for (double v : tr.moments[p]) h.push_back(num(v));
+      e["My"] = h;
+      e["moment_peak"] = {{"My", num(tr.moment_peaks[p].w)}, {"time_s", num(tr.moment_peaks[p].time_s)}};
+    }
     probes.push_back(e);
   }
-  return {{"time_s", tr.time_s},
+  json out = {{"time_s", tr.time_s},
           {"probes", probes},
-          {"units", "m (u, v, w), rad (theta_x, theta_y, theta_z), s"},
+          {"units", "m (u, v, w), rad (theta_x, theta_y, theta_z), N m (My), s"},
           {"modes_used", tr.modes_used},
           {"rigid_modes", tr.rigid_modes},
           {"static_correction", tr.static_correction},
           {"error_estimate", num(tr.error_estimate)},
           {"load", tr.load},
           {"note", tr.note}};
+  if (!tr.moments.empty()) out["moment_error_estimate"] = num(tr.moment_error_estimate);
+  return out;
 }
 
 }  // namespace

@@ -19,6 +19,8 @@ void finish_mode_shapes(ModeShapes& s) {
   const std::size_t n = s.values.size();
   if (s.generalized_mass.size() != n || s.participation.size() != n)
     throw std::logic_error("finish_mode_shapes: one generalized mass and participation per mode needed");
+  if (!s.moments.empty() && s.moments.size() != n)
+    throw std::logic_error("finish_mode_shapes: moments for every mode or none");
   s.effective_mass.assign(n, {0, 0, 0});
   for (std::size_t k = 0; k < n; ++k) {
     auto& mode = s.values[k];
@@ -48,6 +50,8 @@ void finish_mode_shapes(ModeShapes& s) {
     if (big < 0) scale = -scale;
     for (auto& comp : mode)
       for (double& v : comp) v *= scale;
+    if (k < s.moments.size())
+      for (double& v : s.moments[k]) v *= scale;
     s.generalized_mass[k] = 1.0;
     for (int d = 0; d < 3; ++d) {
       s.participation[k][d] *= scale;

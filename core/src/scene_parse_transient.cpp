@@ -78,7 +78,7 @@ void read_transient(const Reader& r, const toml::node& n, Scene& s) {
   const std::string where = "request.transient";
   const toml::table* t = n.as_table();
   if (!t) r.fail(where, "must be a table");
-  r.only_keys(*t, where, {"duration", "step", "load", "rise", "omega", "damping", "static_correction"});
+  r.only_keys(*t, where, {"duration", "step", "load", "rise", "omega", "damping", "static_correction", "moments"});
   TransientRequest tr;
   tr.duration = r.number(*t, where, "duration");
   tr.step = r.number(*t, where, "step");
@@ -88,6 +88,11 @@ void read_transient(const Reader& r, const toml::node& n, Scene& s) {
     const auto b = sc->as_boolean();
     if (!b) r.fail(where + ".static_correction", "must be true or false");
     tr.static_correction = b->get();
+  }
+  if (const toml::node* mo = t->get("moments")) {
+    const auto* b = mo->as_boolean();
+    if (!b) r.fail(where + ".moments", "must be true or false");
+    tr.moments = b->get();
   }
   s.request.transient = tr;
 }

@@ -556,7 +556,10 @@ void SolvePipeline::finish() {
   for (const auto& probe : result_.transient.values)
     for (const auto& history : probe)
       for (double v : history) finite = finite && std::isfinite(v);
-  for (const auto& p : result_.transient.peaks) finite = finite && std::isfinite(p.w) && std::isfinite(p.time_s);
+  for (const auto& history : result_.transient.moments)
+    for (double v : history) finite = finite && std::isfinite(v);
+  for (const auto& peaks : {result_.transient.peaks, result_.transient.moment_peaks})
+    for (const auto& p : peaks) finite = finite && std::isfinite(p.w) && std::isfinite(p.time_s);
   if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
   if (finite && severity(sum.status) < severity(Status::ResourceLimit))
     for (std::string& w : plausibility_warnings(scene_, result_)) sum.warnings.push_back(std::move(w));

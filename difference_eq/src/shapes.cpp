@@ -16,6 +16,7 @@ namespace {
 
 constexpr double kConsistent[4][4] = {{156, 22, 54, -13}, {22, 4, 13, -3}, {54, 13, 156, -22}, {-13, -3, -22, 4}};
 constexpr double kLumped[4][4] = {{1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 0}};
+constexpr double kStiffness[4][4] = {{12, 6, -12, 6}, {6, 4, -6, 2}, {-12, -6, 12, -6}, {6, 2, -6, 4}};
 
 /// u' M v over the assembled mass: element by element, u_e = (w_e, a s_e, w_e+1, a s_e+1),
 /// M_e = rhoA a / c * table (c = 420 consistent, 2 lumped).
@@ -36,6 +37,20 @@ double mass_product(const RegularBeam& b, MassModel mass, const ModeShape& u, co
     points += p.m * u.w[r] * v.w[r] + p.J * u.slope[r] * v.slope[r];
   }
   return scale * sum + points;
+}
+
+/// The bending moment My = EI w'' (sagging positive) of a mode inside element e at xi in [0, 1]:
+/// the element's end moments from its nodal displacements, K_e u_e (the element's stiffness forces,
+/// exact at the nodes under nodal loads), linear between its ends. Not K_e u_e - omega^2 M_e u_e:
+/// summed over the modes with their static weights that would miss the statics by M_e M^-1 f.
+double element_moment(const RegularBeam& b, const ModeShape& u, long e, double xi) {
+  const double a = b.a(), k = b.EI / (a * a * a);
+  const double ue[4] = {u.w[e], a * u.slope[e], u.w[e + 1], a * u.slope[e + 1]};
+  double f[4] = {0, 0, 0, 0};  // conjugate to (w, a s): a moment is a times its entry
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) f[i] += k * kStiffness[i][j] * ue[j];
+  const double left = -a * f[1], right = a * f[3];
+  return left + (right - left) * xi;
 }
 
 /// The rigid-body modes the supports leave (rigid_body_modes): translation w = 1 and/or a
@@ -92,15 +107,18 @@ ModeShapes DifferenceEqSolver::shapes(const Scene& s, const RegularBeam& beam, M
       nodal[i].slope[r] -= c * nodal[0].slope[r];
     }
   }
-  for (std::size_t k = static_cast<std::size_t>(rigid); k < omega.size(); ++k)
+  for (std::size_t k = static_cast<std::size_t>(rigid); k < omega.size(); ++k) {
     if (at.empty()) {
       nodal.push_back(mode_shape(beam, mass, omega[k]));
     } else {
       double backward_error = 0;
       nodal.push_back(mode_shape_attached(beam, mass, at, omega[k], backward_error));
     }
+  }
+  const bool moments = s.request.shapes && s.request.shapes->moments;
   for (const ModeShape& u : nodal) {
     std::vector<std::vector<double>> mode(out.components.size(), std::vector<double>(out.points.size(), 0.0));
+    std::vector<double> moment(moments ? out.points.size() : 0);
     for (std::size_t p = 0; p < out.points.size(); ++p) {
       const double x = out.points[p][0];
       const long e = std::min<long>(beam.R - 1, static_cast<long>(std::floor(x / a)));
@@ -120,8 +138,10 @@ ModeShapes DifferenceEqSolver::shapes(const Scene& s, const RegularBeam& beam, M
         if (out.components[c] == 2) mode[c][p] = w;
         if (out.components[c] == 4) mode[c][p] = -slope;  // theta_y = -dw/dx
       }
+      if (moments) moment[p] = element_moment(beam, u, e, xi);
     }
     out.values.push_back(std::move(mode));
+    if (moments) out.moments.push_back(std::move(moment));
     out.generalized_mass.push_back(mprod(u, u));
     out.participation.push_back({0.0, 0.0, mprod(u, ones)});
   }
@@ -130,7 +150,8 @@ ModeShapes DifferenceEqSolver::shapes(const Scene& s, const RegularBeam& beam, M
                                        "supports and masses (") +
              "rigid modes M-orthonormalized), "
              "interpolated with the elements' Hermite cubics, normalized in the model's " + to_string(mass) +
-             " mass matrix; bending in x-z only";
+             " mass matrix; bending in x-z only" +
+             (moments ? "; moments My from each element's stiffness end forces, linear between its nodes" : "");
   finish_mode_shapes(out);
   return out;
 }

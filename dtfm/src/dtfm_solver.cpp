@@ -194,7 +194,8 @@ ModeShapes DtfmSolver::shapes(const Scene& scene, LineAnalysis& la, const ModeLi
   const bool beam = scene.is_beam();
   const std::array<bool, 3> directions = {beam && scene.physics != Physics::Bending,
                                           beam && scene.physics == Physics::Spatial, true};
-  ModeShapes ms = la.mode_shapes(ml, scene.shape_points(), scene.shape_components(), directions);
+  const bool moments = beam && scene.request.shapes && scene.request.shapes->moments;
+  ModeShapes ms = la.mode_shapes(ml, scene.shape_points(), scene.shape_components(), directions, moments);
   const auto& g = scene.geometry;
   ms.total_mass = scene.material.rho * g.length * g.width * g.height;
   if (beam) {
@@ -206,7 +207,8 @@ ModeShapes DtfmSolver::shapes(const Scene& scene, LineAnalysis& la, const ModeLi
                         "its null space at omega = 0; repeated roots: mass-orthonormalized), the exact prism fields "
                         "between nodes by the transfer matrix, modal mass and participation by GSL quadrature of "
                         "them; values are the section response at nodes (") +
-            (beam ? "rigid-body fit of the prisms" : "linear in y between strip lines") + ")";
+            (beam ? "rigid-body fit of the prisms" : "linear in y between strip lines") + ")" +
+            (moments ? "; moments My: the section resultant of the state's forces at the nodes" : "");
   finish_mode_shapes(ms);
   return ms;
 }

@@ -131,7 +131,8 @@ std::vector<Eigen::MatrixXd> interior(const Gap& g, const Eigen::MatrixXd& left,
 }  // namespace
 
 ModeShapes LineAnalysis::mode_shapes(const ModeList& modes, const std::vector<std::array<double, 2>>& points,
-                                     const std::vector<int>& components, std::array<bool, 3> directions) {
+                                     const std::vector<int>& components, std::array<bool, 3> directions,
+                                     bool moments) {
   ModeShapes out;
   out.points = points;
   out.components = components;
@@ -141,6 +142,8 @@ ModeShapes LineAnalysis::mode_shapes(const ModeList& modes, const std::vector<st
   out.values.assign(n, {});
   out.generalized_mass.assign(n, 0.0);
   out.participation.assign(n, {0.0, 0.0, 0.0});
+  moments = moments && model_.kind == SceneKind::Beam;
+  if (moments) out.moments.assign(n, {});
   if (n == 0 || points.empty()) return out;
   const double L = model_.length;
   std::vector<double> xs;
@@ -175,14 +178,14 @@ ModeShapes LineAnalysis::mode_shapes(const ModeList& modes, const std::vector<st
   }
   for (const auto& c : clusters) {
     if (c.cls < 0 || c.cls >= classes()) throw std::logic_error("dtfm: mode_shapes: a mode without a class");
-    cluster_shapes(*lines_[static_cast<std::size_t>(c.cls)], c.lambda, c.modes, xs, R, out);
+    cluster_shapes(*lines_[static_cast<std::size_t>(c.cls)], c.lambda, c.modes, xs, R, moments, out);
   }
   return out;
 }
 
 void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
                                   const std::vector<double>& xs, const Eigen::MatrixXd& translations,
-                                  ModeShapes& out) {
+                                  bool moments, ModeShapes& out) {
   const int mc = c.mc;
   const auto p = static_cast<Eigen::Index>(which.size());
   const bool rigid = lambda == 0.0;
@@ -247,6 +250,7 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   // (f from the base piece's dynamic stiffness).
   std::vector<Eigen::MatrixXd> D, Y;
   std::vector<const Gap*> piece;  // per fine segment: its gap (base piece length and matrix)
+  std::vector<std::size_t> fine_of(static_cast<std::size_t>(nc), 0);  // each node's index among D's
   for (int i = 0; i < nc; ++i) {
     Eigen::MatrixXd d = V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
     if (const auto* e = c.condition_at(mesh.x, static_cast<std::size_t>(i))) d = e->B * d;
@@ -265,6 +269,7 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
       D.push_back(k + 1 == pieces ? d : inner[k]);
       piece.push_back(gap);
     }
+    fine_of[static_cast<std::size_t>(i)] = D.size() - 1;
   }
   const int nn = static_cast<int>(D.size());
   Y.assign(static_cast<std::size_t>(nn), Eigen::MatrixXd(2 * mc, p));
@@ -368,8 +373,24 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
         raw[k](static_cast<Eigen::Index>(s), u) = component(d, out.components[k]);
     }
   }
+  // My: the section's moment about y of the field forces f = sigma W^-T f_c (the class line's
+  // scaled forces back to the fields, as the reactions'), with the rigid rotation theta_y's column
+  // of the fields; sagging positive.
+  Eigen::MatrixXd raw_m;
+  if (moments) {
+    const Eigen::RowVectorXd row = -c.sigma * model_.rigid_motions.col(4).transpose() * c.Winv.transpose();
+    raw_m = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p);
+    for (std::size_t s = 0; s < np; ++s) {
+      const int i = node(std::clamp(out.points[s][0], 0.0, model_.length));
+      raw_m.row(static_cast<Eigen::Index>(s)) = row * Y[fine_of[static_cast<std::size_t>(i)]].bottomRows(mc);
+    }
+  }
   for (Eigen::Index j = 0; j < p; ++j) {
     const std::size_t mode = which[static_cast<std::size_t>(j)];
+    if (moments) {
+      const Eigen::VectorXd col = raw_m * Cb.col(j);
+      out.moments[mode].assign(col.data(), col.data() + col.size());
+    }
     auto& vals = out.values[mode];
     vals.assign(ncomp, std::vector<double>(np, 0.0));
     for (std::size_t k = 0; k < ncomp; ++k) {

@@ -10,9 +10,10 @@
 namespace modalbench::exact {
 
 /// A mode of a beam in one plane (disp = w or v, rot = phi) or of a bar (disp = u or the twist)
-/// at the points xs, with int mu (disp^2 + r^2 rot^2) dx and int mu disp dx of these values.
+/// at the points xs, with int mu (disp^2 + r^2 rot^2) dx and int mu disp dx of these values; a
+/// beam's bending moment EI phi' (the statics' sign; a rigid mode's is 0) at the points too.
 struct LineShape {
-  std::vector<double> disp, rot;
+  std::vector<double> disp, rot, moment;
   double modal_mass = 0, participation = 0;
 };
 /// omega = 0: the rigid mode `rigid_index` of `rigid_count` (translation first, then rotation

@@ -265,6 +265,7 @@ ModeShapes beam_shapes(const Scene& s, const std::vector<ModeEntry>& modes) {
   ModeShapes out = shapes_frame(s);
   std::vector<double> xs;
   for (const auto& p : out.points) xs.push_back(p[0]);
+  const bool moments = s.request.shapes && s.request.shapes->moments;
   for (const auto& e : modes) {
     std::vector<std::vector<double>> mode(out.components.size(), std::vector<double>(xs.size(), 0.0));
     std::array<double, 3> gamma{0, 0, 0};
@@ -280,6 +281,7 @@ ModeShapes beam_shapes(const Scene& s, const std::vector<ModeEntry>& modes) {
         put(2, ls.disp, 1.0);
         put(4, ls.rot, -1.0);  // theta_y = -phi
         gamma[2] = ls.participation;
+        if (moments) out.moments.push_back(ls.moment);
         break;
       case ModeFamily::BendingXY:
         ls = bending_shape(bending_xy(s), bend(s.x0), bend(s.xL), e.omega, e.index, e.rigid_count, xs,
@@ -299,6 +301,7 @@ ModeShapes beam_shapes(const Scene& s, const std::vector<ModeEntry>& modes) {
         break;
       default: throw std::logic_error("exact beam mode without a line");
     }
+    if (moments && out.moments.size() == out.values.size()) out.moments.emplace_back(xs.size(), 0.0);  // no My
     out.values.push_back(std::move(mode));
     out.generalized_mass.push_back(ls.modal_mass);
     out.participation.push_back(gamma);

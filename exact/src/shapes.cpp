@@ -81,6 +81,7 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     for (double x : xs) {
       out.disp.push_back(rotation ? x - pivot : 1.0);
       out.rot.push_back(rotation ? 1.0 : 0.0);
+      out.moment.push_back(0.0);
     }
     if (rotation) {
       out.modal_mass = over_pieces(beam, [pivot](double a, double b, const BeamBending& p) {
@@ -102,9 +103,11 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
   for (double x : xs) line.sys.nodes_at.push_back(x / L);
   const LineMode mode(line.sys, omega * omega);
   for (double x : xs) {
-    const Eigen::VectorXd d = mode.displacement(x / L);
-    out.disp.push_back(d[0] * L);  // w_bar = w / L
-    out.rot.push_back(d[1]);
+    // The state [w_bar, phi, Q, M] (line_models.hpp), forces scaled by EI / L^2 and EI / L.
+    const Eigen::VectorXd y = mode.state(x / L);
+    out.disp.push_back(y[0] * L);  // w_bar = w / L
+    out.rot.push_back(y[1]);
+    out.moment.push_back(y[3] * beam.EI / L);
   }
   out.modal_mass = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) {
     const BeamBending p = beam.at(xi * L);

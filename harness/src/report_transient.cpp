@@ -51,6 +51,8 @@ std::vector<std::string> row_of(const TransientRun& r) {
             "—",
             "—",
             "—",
+            "—",
+            "—",
             to_string(x.summary.status) + ": " + md_cell(x.summary.message),
             secs_str(x.summary.total_time_s)};
   return {who,
@@ -59,6 +61,8 @@ std::vector<std::string> row_of(const TransientRun& r) {
           fmt::format("{:.7g}", t.peaks[0].w),
           fmt::format("{:.6g}", t.peaks[0].time_s),
           err_str(t.error_estimate),
+          t.moment_peaks.empty() ? "—" : fmt::format("{:.6g}", t.moment_peaks[0].w),
+          t.moments.empty() ? "—" : err_str(t.moment_error_estimate),
           err_str(x.summary.error_estimate.frequencies),
           to_string(x.summary.status),
           secs_str(x.summary.total_time_s)};
@@ -113,27 +117,32 @@ void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std
       "Load: {}; {}; from rest. By modal superposition of each back-end's own modes on the mesh its "
       "default solve kept (refined to the tolerance {:g}): each modal coordinate integrated exactly, the truncated "
       "modes' static share added from the statics, and the modes doubled from 12 until the truncation estimate meets "
-      "the tolerance. Peaks are located on the modes' closed forms. Peak w at {}; the frequency estimate is the "
-      "mesh's own (its discretization error, which the truncation estimate does not include).",
+      "the tolerance (the moments' estimate too, where the back-end's modes carry moments). Peaks are located on the "
+      "modes' closed forms. Peaks at {}; the frequency estimate is the mesh's own (its discretization error, which "
+      "the truncation estimates do not include).",
       c.transients.front().result.transient.load.empty() ? to_string(t.load)
                                                          : c.transients.front().result.transient.load,
       damping_str(t), c.scene.request.tolerance, at));
   std::vector<std::vector<std::string>> rows;
-  std::vector<Series> series;
+  std::vector<Series> series, moments;
   for (const TransientRun& r : c.transients) {
     rows.push_back(row_of(r));
     const Transient& tr = r.result.transient;
     if (tr.empty()) continue;
-    Series s{r.backend + " " + r.result.summary.mesh, {}, "lines"};
-    for (std::size_t k = 0; k < tr.time_s.size(); ++k) s.points.emplace_back(tr.time_s[k], tr.values[0][0][k]);
+    Series s{r.backend + " " + r.result.summary.mesh, {}, "lines"}, m = s;
+    for (std::size_t k = 0; k < tr.time_s.size(); ++k) {
+      s.points.emplace_back(tr.time_s[k], tr.values[0][0][k]);
+      if (!tr.moments.empty()) m.points.emplace_back(tr.time_s[k], tr.moments[0][k]);
+    }
     series.push_back(std::move(s));
+    if (!m.points.empty()) moments.push_back(std::move(m));
   }
   for (const PublishedPeak& pp : kPublished)
     if (c.scene.name == pp.scene)
       rows.push_back({std::string("published: ") + pp.source, "—", "1", fmt::format("{:.7g}", pp.w),
-                      fmt::format("{:.6g}", pp.time_s), "—", "—", "—", "—"});
-  doc.table({"back-end", "mesh kept", "modes", "peak w [m]", "at t [s]", "truncation estimate", "frequency estimate",
-             "status", "time [s]"},
+                      fmt::format("{:.6g}", pp.time_s), "—", "—", "—", "—", "—", "—"});
+  doc.table({"back-end", "mesh kept", "modes", "peak w [m]", "at t [s]", "truncation estimate", "peak My [N m]",
+             "its estimate", "frequency estimate", "status", "time [s]"},
             rows, 3);
   if (auto svg = plot(
           ctx, sid + "_transient",
@@ -142,6 +151,14 @@ void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std
           series);
       !svg.empty())
     doc.figure("plots/" + sid + "_transient.svg", svg, "Time history of w at the first probe, every back-end overlaid");
+  if (!moments.empty()) {
+    const std::string setup = fmt::format(
+        "set title 'My at {} under the time history'\nset xlabel 't [s]'\nset ylabel 'My [N m]'\nset grid\n", at);
+    if (auto svg = plot(ctx, sid + "_transient_moment", setup, moments); !svg.empty())
+      doc.figure("plots/" + sid + "_transient_moment.svg", svg,
+                 "Bending moment My (sagging positive) at the first probe, every back-end overlaid: the modes' own "
+                 "moments with the statics' as the static correction");
+  }
   write_mode_convergence(doc, c, ctx, sid);
 }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 namespace modalbench {
 
@@ -78,6 +79,49 @@ std::optional<Eigen::MatrixXd> static_flexibility(const Solver& solver, const Sc
       G(static_cast<long>(o), static_cast<long>(i)) = r.deflections[o].w;
   }
   return G;
+}
+
+/// G(p, p) at each point: w at p under a unit Fz at p (the back-end's statics).
+std::optional<std::vector<double>> driving_point_flexibility(const Solver& solver, const Scene& structure,
+                                                             const Discretization& mesh,
+                                                             const std::vector<std::array<double, 2>>& points) {
+  std::vector<double> g;
+  for (const auto& p : points) {
+    Scene s = structure;
+    PointLoad unit;
+    unit.x = p[0];
+    unit.y = p[1];
+    unit.Fz = 1.0;
+    s.loads = {unit};
+    s.request.probes = {p};
+    const Result r = solver.solve(s, mesh, without_estimate());
+    if (!r.ok() || r.deflections.size() != 1) return std::nullopt;
+    g.push_back(r.deflections[0].w);
+  }
+  return g;
+}
+
+/// The bound on the truncated tail (StateSpaceModel::tail_bound), from the residual driving-point
+/// flexibilities at the inputs then the outputs (`g`, in md.w's point order).
+double tail_bound(const Modes& md, int N, const std::vector<double>& g, std::size_t ni, double band,
+                  bool corrected) {
+  const double next = md.omega[static_cast<std::size_t>(N)];
+  if (!(next > band)) return std::numeric_limits<double>::infinity();
+  std::vector<double> R(g.size());
+  for (std::size_t p = 0; p < g.size(); ++p) {
+    double s = 0;
+    for (int k = 0; k < N; ++k) {
+      const double phi = md.w[static_cast<std::size_t>(k)][p], om = md.omega[static_cast<std::size_t>(k)];
+      s += phi * phi / (om * om);
+    }
+    // Non-negative in exact arithmetic (every mode's phi^2 / omega^2 >= 0): rounding of the
+    // difference is allowed for at 1e-12 of G.
+    R[p] = std::max(0.0, g[p] - s) + 1e-12 * std::abs(g[p]);
+  }
+  double worst = 0;
+  for (std::size_t o = ni; o < g.size(); ++o)
+    for (std::size_t i = 0; i < ni; ++i) worst = std::max(worst, std::sqrt(R[o] * R[i]));
+  return worst * (corrected ? band * band : next * next) / (next * next - band * band);
 }
 
 void assemble(const Modes& md, int N, const RomRequest& rq, const std::optional<Eigen::MatrixXd>& G,
@@ -243,7 +287,16 @@ StateSpaceModel export_rom(const Solver& solver, const Scene& scene, const std::
         "split these states off first",
         m.rigid_modes, m.rigid_modes);
   if (N < rq.modes) m.note += fmt::format("; the model has only {} modes", N);
-  if (N > 0) check(solver, structure, kept, md, N, rq, m);
+  if (N > 0) {
+    m.band_rad_s = md.omega[static_cast<std::size_t>(N) - 1] > 0 ? md.omega[static_cast<std::size_t>(N) - 1] : 1.0;
+    check(solver, structure, kept, md, N, rq, m);
+  }
+  if (N > 0 && N < static_cast<int>(md.omega.size()) && m.rigid_modes == 0) {
+    if (const auto g = driving_point_flexibility(solver, structure, kept, sr.points))
+      m.tail_bound = tail_bound(md, N, *g, rq.inputs.size(), m.band_rad_s, m.static_correction);
+  }
+  if (std::isnan(m.tail_bound))
+    m.note += "; no bound on the truncated tail (it needs the static flexibility and a neglected mode)";
   return m;
 }
 
@@ -278,6 +331,7 @@ nlohmann::json to_json(const StateSpaceModel& m) {
             {"hinf_relative", num(m.hinf_relative)},
             {"band_rad_s", num(m.band_rad_s)},
             {"first_neglected_m_per_n", num(m.first_neglected)},
+            {"tail_bound_m_per_n", num(m.tail_bound)},
             {"how",
              "the displacement rows against the back-end's own receptance, undamped, on a uniform grid over "
              "(0, band], samples within 1 % of a natural frequency left out"}}},

@@ -4,6 +4,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -70,5 +72,13 @@ void beam_reactions(const Scene& s, const Model& model, const System& sys, const
 /// where the multipliers do not balance the unreduced model to 1e-8.
 void plate_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                      const std::vector<PointAction>& actions, Result& r);
+
+/// The bending moments My of the first `count` modes (columns of Z, eigenvalues lambda) of a beam at
+/// the points `at` (modal_moments.cpp): [mode][point], in Z's scaling. Nothing (and `why`) where a
+/// mode's constraint forces do not balance the model to 1e-8, as for the statics' reactions.
+std::optional<std::vector<std::vector<double>>> modal_moments(const Scene& s, const Model& model, const System& sys,
+                                                              const Eigen::MatrixXd& Z, const Eigen::VectorXd& lambda,
+                                                              long count, const std::vector<std::array<double, 2>>& at,
+                                                              std::string& why);
 
 }  // namespace modalbench::rfem::detail

@@ -325,7 +325,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
       r.mode_families.push_back(md.family[static_cast<std::size_t>(i)]);
     }
     if (shown < k) sum.warnings.push_back(fmt::format("{} of {} requested modes computed", shown, k));
-    if (s.request.shapes && shown > 0) r.mode_shapes = sample_shapes(s, model, sys, md.Z, shown);
+    if (s.request.shapes && shown > 0) r.mode_shapes = sample_shapes(s, model, sys, md.Z, md.lambda, shown);
     method += "; modes: " + md.method;
     if (md.near_rigid_bound > 0) {
       // Relative error bound of the near-rigid frequencies (half that of their eigenvalues): it

@@ -2,12 +2,13 @@
 
 #include <fmt/format.h>
 
+#include "analysis_detail.hpp"
 #include "modalbench/rfem/rfem.hpp"
 
 namespace modalbench::rfem {
 
 ModeShapes sample_shapes(const Scene& s, const Model& model, const System& sys, const Eigen::MatrixXd& Z,
-                         long count) {
+                         const Eigen::VectorXd& lambda, long count) {
   ModeShapes out;
   out.points = s.shape_points();
   out.components = s.shape_components();
@@ -47,6 +48,15 @@ ModeShapes sample_shapes(const Scene& s, const Model& model, const System& sys, 
   }
   out.note = "rfem eigenvectors, orthonormal in the RFE mass matrix (repeated frequencies: an orthonormal basis of the "
              "eigenspace), sampled by (bi)linear interpolation of the RFE centres' motion";
+  if (s.is_beam() && s.request.shapes && s.request.shapes->moments) {
+    std::string why;
+    if (auto m = detail::modal_moments(s, model, sys, Z, lambda, count, out.points, why)) {
+      out.moments = std::move(*m);
+      out.note += "; moments My by the free body of each mode under its inertia loads and support reactions";
+    } else {
+      out.note += "; no moments: " + why;
+    }
+  }
   finish_mode_shapes(out);
   return out;
 }

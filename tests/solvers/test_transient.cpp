@@ -78,8 +78,8 @@ Result solve(const std::string& text, const std::string& backend, const std::str
 
 BOOST_AUTO_TEST_CASE(midspan_step_reaches_twice_the_static_deflection_at_half_the_period) {
   for (const bool correction : {true, false}) {
-    const std::string tr = fmt::format("duration = {}\nstep = {}\nload = \"step\"\nstatic_correction = {}", 1.2 * kT1,
-                                       kT1 / 200, correction);
+    const std::string tr = fmt::format("duration = {}\nstep = {}\nload = \"step\"\nstatic_correction = {}\nmoments = false",
+                                       1.2 * kT1, kT1 / 200, correction);
     const Result r = solve(beam(tr, 1e-5), "exact");
     BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
     const Transient& t = r.transient;
@@ -102,7 +102,7 @@ BOOST_AUTO_TEST_CASE(a_long_damped_history_ends_at_the_statics) {
   for (const bool correction : {true, false}) {
     const std::string tr = fmt::format(
         "duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = {} }}\n"
-        "static_correction = {}",
+        "static_correction = {}\nmoments = false",
         duration, kT1 / 20, zeta, correction);
     const Result r = solve(beam(tr, 1e-5), "exact");
     BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
@@ -148,7 +148,7 @@ static_correction = false)";
 }
 
 BOOST_AUTO_TEST_CASE(discretized_back_ends_converge_to_the_peak) {
-  const std::string tr = fmt::format("duration = {}\nstep = {}\nload = \"step\"", 0.6 * kT1, kT1 / 200);
+  const std::string tr = fmt::format("duration = {}\nstep = {}\nload = \"step\"\nmoments = false", 0.6 * kT1, kT1 / 200);
   for (const std::string backend : {"rfem", "difference_eq"}) {
     std::vector<double> errors;
     for (const std::string mesh : {"8", "16", "32"}) {
@@ -166,6 +166,58 @@ BOOST_AUTO_TEST_CASE(discretized_back_ends_converge_to_the_peak) {
   }
 }
 
+// The moments of the same beam: mode n's moment is in phase with its deflection, so at T1 / 2 the
+// moment is twice the static moment everywhere (left of the load M = -F x / 2, sagging positive). At
+// the load the series of the modes' static moments falls like 1 / modes, which the estimate covers.
+BOOST_AUTO_TEST_CASE(the_moment_at_half_the_period_is_twice_the_static_moment) {
+  const std::string tr = fmt::format("duration = {}\nstep = {}\nload = \"step\"", 0.6 * kT1, kT1 / 200);
+  const Result r = solve(beam(tr, 1e-2), "exact");
+  BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
+  const Transient& t = r.transient;
+  BOOST_TEST_REQUIRE(t.moments.size() == 2u);
+  BOOST_TEST(t.moment_error_estimate <= 1e-2);
+  double peak = 0;
+  for (const TransientPeak& p : t.moment_peaks) peak = std::max(peak, std::abs(p.w));
+  const double xs[2] = {kL / 2, 0.5};
+  for (std::size_t p = 0; p < 2; ++p) {
+    const double stat = -kF * xs[p] / 2;
+    BOOST_TEST(std::abs(r.deflections[p].forces.My / stat - 1) <= 1e-9);
+    BOOST_TEST(std::abs(t.moments[p][100] - 2 * stat) <= t.moment_error_estimate * peak + 1e-9 * std::abs(stat),
+               "probe " << p << ": " << t.moments[p][100] << " vs " << 2 * stat << ", estimate "
+                        << t.moment_error_estimate << ", " << t.modes_used << " modes");
+  }
+  BOOST_TEST(std::abs(t.moment_peaks[0].w / (2 * -kF * kL / 4) - 1) <= t.moment_error_estimate);
+}
+
+// Each back-end's modes carry moments of their own (exact: the transfer-matrix state; dtfm: the
+// prism state's forces; difference_eq: the elements' stiffness forces; rfem: the free body of each
+// mode under its inertia loads): without the static correction, a long damped history ends at the
+// sum of the modes' static moments, which must be the back-end's own statics (free bodies of the
+// loads and reactions), within the truncation estimate.
+BOOST_AUTO_TEST_CASE(every_back_end_s_modal_moments_sum_to_its_statics) {
+  const double zeta = 0.2, duration = 20 * kT1;
+  const std::string tr = fmt::format(
+      "duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = {} }}\nstatic_correction = false", duration,
+      kT1 / 10, zeta);
+  const double decay = std::exp(-zeta * kW1 * duration);
+  for (const std::string backend : {"exact", "dtfm", "difference_eq", "rfem"}) {
+    const Result r = solve(steel_beam(kL, kB, kH, "clamped", kF, 0.3, 1e-2, tr), backend);
+    BOOST_TEST_REQUIRE(r.ok(), backend << ": " << r.summary.message);
+    const Transient& t = r.transient;
+    BOOST_TEST_REQUIRE(t.moments.size() == 2u, backend << ": " << t.note);
+    BOOST_TEST(!t.static_correction);
+    double peak = 0;
+    for (const TransientPeak& p : t.moment_peaks) peak = std::max(peak, std::abs(p.w));
+    for (std::size_t p = 0; p < 2; ++p) {
+      BOOST_TEST_REQUIRE(r.deflections[p].has_forces);
+      const double end = t.moments[p].back(), stat = r.deflections[p].forces.My;
+      BOOST_TEST(std::abs(end - stat) <= (t.moment_error_estimate + 2 * decay) * peak,
+                 backend << " probe " << p << ": " << end << " vs " << stat << ", estimate " << t.moment_error_estimate
+                         << ", " << t.modes_used << " modes");
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   const std::string ok = "duration = 0.1\nstep = 0.001\nload = \"step\"";
   expect_input_error(beam("duration = 0.1\nstep = 0.2\nload = \"step\"", 1e-3), "request.transient.step",
@@ -177,6 +229,7 @@ BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
                      "request.transient.load.time", "must start at 0");
   expect_input_error(beam("duration = 0.1\nstep = 0.001\nload = \"kick\"", 1e-3), "request.transient.load", "unknown");
   expect_input_error(beam(ok + "\ndamping = { modal = -0.1 }", 1e-3), "request.transient.damping.modal", "[0, 100]");
+  expect_input_error(beam(ok + "\nmoments = 1", 1e-3), "request.transient.moments", "true or false");
   std::string lossy = beam(ok, 1e-3);
   lossy.replace(lossy.find("nu = 0.3"), 8, "nu = 0.3\nloss_factor = 0.01");
   expect_input_error(lossy, "request.transient.damping", "no causal form");
@@ -230,7 +283,7 @@ BOOST_AUTO_TEST_CASE(a_free_beam_accelerates_as_a_rigid_body_plus_its_inertia_re
   const double EI = kE * std::pow(b, 4) / 12, m = kRho * b * b * L;
   const double w1 = 22.3733 * std::sqrt(EI / (kRho * b * b)) / (L * L), duration = 40 * 2 * M_PI / w1;
   const std::string text = steel_beam(L, b, b, "free", F, 0.0, 1e-6,
-                                      fmt::format("duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = 0.3 }}",
+                                      fmt::format("duration = {}\nstep = {}\nload = \"step\"\ndamping = {{ modal = 0.3 }}\nmoments = false",
                                                   duration, duration / 100));
   const Result r = solve(text, "exact");
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);

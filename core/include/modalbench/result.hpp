@@ -83,6 +83,10 @@ struct ModeShapes {
   std::vector<std::array<double, 3>> participation;
   /// Per mode: effective modal masses Gamma_d^2 / generalized mass, kg.
   std::vector<std::array<double, 3>> effective_mass;
+  /// moments[mode][point]: the mode's bending moment My (InternalForces' sign) at each point, N*m per
+  /// sqrt(kg) of modal mass, where it was asked (ShapeRequest::moments) and the back-end gives it for
+  /// the scene (beams); empty otherwise. At a point action or support, the value just beyond it.
+  std::vector<std::vector<double>> moments;
   std::array<bool, 3> directions{};  ///< the translations the model carries (x, y, z)
   double total_mass = 0;             ///< of the model, kg
   bool empty() const { return values.empty(); }
@@ -174,6 +178,15 @@ struct Transient {
   /// values[probe][component][time]: m (translations) or rad (rotations).
   std::vector<std::vector<std::vector<double>>> values;
   std::vector<TransientPeak> peaks;  ///< per probe
+  /// moments[probe][time]: the bending moment My (InternalForces' sign), N*m, where the back-end's
+  /// modes carry it (ModeShapes::moments) and, with the static correction, its statics too; empty
+  /// otherwise. moment_peaks: per probe, the My of largest magnitude with its sign (TransientPeak::w
+  /// holds it, N*m), located like the peaks of w.
+  std::vector<std::vector<double>> moments;
+  std::vector<TransientPeak> moment_peaks;
+  /// The truncation estimate of the moment histories, relative to the largest |My| peak (as
+  /// error_estimate's for w; kNotMeasured without moments).
+  double moment_error_estimate = kNotMeasured;
   int modes_used = 0;                ///< modes superposed (rigid-body modes included)
   int rigid_modes = 0;               ///< of them, with omega = 0
   bool static_correction = false;    ///< whether the truncated modes' static share was added

@@ -190,6 +190,9 @@ struct ShapeRequest {
   /// Where given (in code only: the transient response's load quadrature and probes), the points
   /// sampled instead of the nx x ny grid.
   std::vector<std::array<double, 2>> points{};
+  /// Also the modes' bending moments My at the points (ModeShapes::moments), where the back-end
+  /// gives them (in code only: the transient response's moment histories).
+  bool moments = false;
   static constexpr int kBeamDefaultNx = 41, kPlateDefaultNx = 21, kPlateDefaultNy = 13;
 };
 
@@ -214,6 +217,10 @@ struct TransientRequest {
   /// Mode acceleration: the truncated modes' static share (the statics minus the used modes'
   /// static part) added quasi-statically.
   bool static_correction = true;
+  /// A beam's bending moment histories My at the probes (where the back-end's modes carry moments),
+  /// their truncation estimate driving the modes used and the status like w's. Off: w and the
+  /// rotations only (a moment series at a suddenly applied point load converges only like 1 / modes).
+  bool moments = true;
 };
 std::string to_string(TransientRequest::Load);  ///< step, impulse, ramp, harmonic, table
 

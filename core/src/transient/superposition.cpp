@@ -1,7 +1,8 @@
 // The transient response of `[request.transient]` by modal superposition: the back-end's modes
 // sampled at the probes and the load points, their modal forces, each mode integrated exactly
-// (modal_response.cpp), the static correction, the peaks, and the truncation estimate; the modes
-// doubled until the estimate meets the tolerance.
+// (modal_response.cpp), the static correction, the peaks, and the truncation estimate, for w and,
+// where the modes carry them, for the bending moment My; the modes doubled until the estimates meet
+// the tolerance.
 #include "../solve_internal.hpp"
 #include "load_quadrature.hpp"
 
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 namespace modalbench::detail {
 
@@ -23,6 +25,8 @@ struct ModalBasis {
   std::vector<int> components;
   /// a[mode][component][probe] = phi(probe) P: the mode's share of the response per unit q.
   std::vector<std::vector<std::vector<double>>> a;
+  /// m[mode][probe] = My_n(probe) P (empty: the modes carry no moments).
+  std::vector<std::vector<double>> m;
   int computed = 0;  ///< modes the back-end gave
   int used = 0;      ///< modes superposed (no cluster of repeated frequencies split)
   int rigid = 0;
@@ -55,6 +59,11 @@ ModalBasis basis_of(const Result& r, std::size_t probes, const std::vector<LoadP
     for (std::size_t c = 0; c < ms.components.size(); ++c)
       for (std::size_t j = 0; j < probes; ++j) an[c][j] = phi[c][j] * P;
     b.a.push_back(std::move(an));
+    if (ms.moments.size() == ms.values.size()) {
+      std::vector<double> mn(probes);
+      for (std::size_t j = 0; j < probes; ++j) mn[j] = ms.moments[static_cast<std::size_t>(n)][j] * P;
+      b.m.push_back(std::move(mn));
+    }
     b.omega.push_back(r.frequencies_rad_s[static_cast<std::size_t>(n)]);
     if (b.omega.back() == 0) ++b.rigid;
   }
@@ -83,11 +92,45 @@ std::vector<std::vector<double>> correction(const ModalBasis& b, int m, const st
   return c;
 }
 
+/// The same for the bending moment My, per probe (zeros without a correction or without moments).
+std::vector<double> moment_correction(const ModalBasis& b, int m, const std::vector<Deflection>* statics,
+                                      std::size_t probes) {
+  std::vector<double> c(probes, 0.0);
+  if (!statics || b.m.empty()) return c;
+  for (std::size_t j = 0; j < probes; ++j) {
+    double s = (*statics)[j].forces.My;
+    for (int n = 0; n < m; ++n) s -= b.m[static_cast<std::size_t>(n)][j] / (b.w(n) * b.w(n));
+    c[j] = s;
+  }
+  return c;
+}
+
+/// One response at the probes, w or My: each mode's share per unit modal coordinate, the static
+/// correction of the modes used and that of half of them (for the truncation estimate).
+struct Channel {
+  std::function<double(int, std::size_t)> share;
+  std::vector<double> corr, corr_half;
+  double scale = 0;  ///< a floor for the peak the estimate is relative to (0: the peak alone)
+  /// The estimate's factor over the halving difference: 1 where the tail falls faster than 1 / modes
+  /// (w: the difference is then several times the tail); 1.25 (Roache's safety factor) where the tail
+  /// may fall like 1 / modes, so that the difference only equals it (a moment after a point load is
+  /// suddenly applied).
+  double factor = 1;
+};
+
+/// A channel's peaks per probe and its truncation estimate.
+struct ChannelResult {
+  std::vector<TransientPeak> peaks;
+  double estimate = 0;
+};
+
 /// What one round (one modal solve) gives.
 struct Round {
   ModalBasis basis;
   Transient out;
-  double estimate = 0;
+  double estimate = 0;         ///< of w
+  double moment_estimate = 0;  ///< of My (where the modes carry it)
+  double moment_scale = 0;     ///< moment_scale() of the solve
   std::string resolution_note;
 };
 
@@ -117,99 +160,150 @@ std::pair<double, std::size_t> fine_grid(const Context& cx, const ModalBasis& b,
   return {T / static_cast<double>(n - 1), n};
 }
 
-/// The histories on the output grid.
-void histories(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr, Transient& out) {
+/// The histories on the output grid (and the moments' where `moment_corr` is given).
+void histories(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr,
+               const std::vector<double>* moment_corr, Transient& out) {
   const auto K = static_cast<std::size_t>(std::floor(cx.rq.duration / cx.rq.step * (1 + 1e-12))) + 1;
   out.time_s.resize(K);
   for (std::size_t k = 0; k < K; ++k) out.time_s[k] = static_cast<double>(k) * cx.rq.step;
   out.values.assign(cx.probes, std::vector<std::vector<double>>(b.components.size(), std::vector<double>(K, 0.0)));
+  if (moment_corr) out.moments.assign(cx.probes, std::vector<double>(K, 0.0));
+  auto add = [K](std::vector<double>& to, double a, const std::vector<double>& q) {
+    if (a != 0)
+      for (std::size_t k = 0; k < K; ++k) to[k] += a * q[k];
+  };
   for (int n = 0; n < b.used; ++n) {
     const ModalResponse r(b.w(n), damping_coefficient(cx.rq, b.w(n)), cx.g);
     const std::vector<double> q = r.sample(cx.rq.step, K);
-    for (std::size_t j = 0; j < cx.probes; ++j)
-      for (std::size_t c = 0; c < b.components.size(); ++c) {
-        const double a = b.share(n, c, j);
-        if (a != 0)
-          for (std::size_t k = 0; k < K; ++k) out.values[j][c][k] += a * q[k];
-      }
+    for (std::size_t j = 0; j < cx.probes; ++j) {
+      for (std::size_t c = 0; c < b.components.size(); ++c) add(out.values[j][c], b.share(n, c, j), q);
+      if (moment_corr) add(out.moments[j], b.m[static_cast<std::size_t>(n)][j], q);
+    }
   }
   for (std::size_t k = 0; k < K; ++k) {
     const double gk = cx.g.value(out.time_s[k]);
-    for (std::size_t j = 0; j < cx.probes; ++j)
+    for (std::size_t j = 0; j < cx.probes; ++j) {
       for (std::size_t c = 0; c < b.components.size(); ++c) out.values[j][c][k] += corr[c][j] * gk;
+      if (moment_corr) out.moments[j][k] += (*moment_corr)[j] * gk;
+    }
   }
 }
 
-/// w at probe j and time t from the closed forms.
-double w_at(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr, std::size_t j,
-            double t) {
-  double w = corr[static_cast<std::size_t>(cx.w_index)][j] * cx.g.value(t);
+/// A channel's value at probe j and time t from the closed forms.
+double value_at(const Context& cx, const ModalBasis& b, const Channel& ch, std::size_t j, double t) {
+  double v = ch.corr[j] * cx.g.value(t);
   for (int n = 0; n < b.used; ++n) {
-    const double a = b.share(n, static_cast<std::size_t>(cx.w_index), j);
-    if (a != 0) w += a * ModalResponse(b.w(n), damping_coefficient(cx.rq, b.w(n)), cx.g).q(t);
+    const double a = ch.share(n, j);
+    if (a != 0) v += a * ModalResponse(b.w(n), damping_coefficient(cx.rq, b.w(n)), cx.g).q(t);
   }
-  return w;
+  return v;
 }
 
-/// The extreme of s w(t) on [lo, hi] by golden section (the bracket from the fine grid).
-TransientPeak refine_peak(const Context& cx, const ModalBasis& b, const std::vector<std::vector<double>>& corr,
-                          std::size_t j, double lo, double hi, TransientPeak best) {
+/// The extreme of s v(t) on [lo, hi] by golden section (the bracket from the fine grid).
+TransientPeak refine_peak(const Context& cx, const ModalBasis& b, const Channel& ch, std::size_t j, double lo,
+                          double hi, TransientPeak best) {
   const double s = best.w >= 0 ? 1.0 : -1.0, r = 0.5 * (std::sqrt(5.0) - 1);
   double a = lo, d = hi, x1 = d - r * (d - a), x2 = a + r * (d - a);
-  double f1 = s * w_at(cx, b, corr, j, x1), f2 = s * w_at(cx, b, corr, j, x2);
+  double f1 = s * value_at(cx, b, ch, j, x1), f2 = s * value_at(cx, b, ch, j, x2);
   for (int it = 0; it < 80 && d - a > 1e-14 * std::max(1.0, hi); ++it)
     if (f1 > f2) {
-      d = x2, x2 = x1, f2 = f1, x1 = d - r * (d - a), f1 = s * w_at(cx, b, corr, j, x1);
+      d = x2, x2 = x1, f2 = f1, x1 = d - r * (d - a), f1 = s * value_at(cx, b, ch, j, x1);
     } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + r * (d - a), f2 = s * w_at(cx, b, corr, j, x2);
+      a = x1, x1 = x2, f1 = f2, x2 = a + r * (d - a), f2 = s * value_at(cx, b, ch, j, x2);
     }
   const double t = f1 > f2 ? x1 : x2, f = std::max(f1, f2);
   if (f > std::abs(best.w)) best = {s * f, t};
   return best;
 }
 
-/// Peaks and the truncation estimate on the fine grid.
-void peaks_and_estimate(const Context& cx, Round& rd, const std::vector<std::vector<double>>& corr) {
+/// Peaks and truncation estimates of the channels on the fine grid: the estimate is the larger of
+/// the change when the modes used are halved and the first neglected mode's response, relative to
+/// the largest peak (or the channel's scale, where larger).
+std::vector<ChannelResult> peaks_and_estimates(const Context& cx, Round& rd, const std::vector<Channel>& chs,
+                                               int half) {
   const ModalBasis& b = rd.basis;
   const auto [dt, N] = fine_grid(cx, b, rd.resolution_note);
-  const int half = unsplit(b, std::max(1, b.used / 2));
-  const std::vector<std::vector<double>> corr_half = correction(b, half, cx.statics);
-  const auto wi = static_cast<std::size_t>(cx.w_index);
-  std::vector<std::vector<double>> full(cx.probes, std::vector<double>(N, 0.0)), diff = full, next = full;
+  using Grid = std::vector<std::vector<double>>;
+  std::vector<Grid> full(chs.size(), Grid(cx.probes, std::vector<double>(N, 0.0))), diff = full, next = full;
   for (int n = 0; n < std::min(b.used + 1, b.computed); ++n) {
     const double om = b.w(n);
     const std::vector<double> q = ModalResponse(om, damping_coefficient(cx.rq, om), cx.g).sample(dt, N);
-    for (std::size_t j = 0; j < cx.probes; ++j) {
-      const double a = b.share(n, wi, j);
-      if (a == 0) continue;
-      for (std::size_t i = 0; i < N; ++i) {
-        if (n < b.used) full[j][i] += a * q[i];
-        if (n >= half && n < b.used) diff[j][i] += a * q[i];
-        // The first neglected mode, less its static share where the correction carries it.
-        if (n == b.used)
-          next[j][i] = a * (q[i] - (cx.statics && om > 0 ? cx.g.value(static_cast<double>(i) * dt) / (om * om) : 0.0));
+    for (std::size_t c = 0; c < chs.size(); ++c)
+      for (std::size_t j = 0; j < cx.probes; ++j) {
+        const double a = chs[c].share(n, j);
+        if (a == 0) continue;
+        for (std::size_t i = 0; i < N; ++i) {
+          if (n < b.used) full[c][j][i] += a * q[i];
+          if (n >= half && n < b.used) diff[c][j][i] += a * q[i];
+          // The first neglected mode, less its static share where the correction carries it.
+          if (n == b.used)
+            next[c][j][i] =
+                a * (q[i] - (cx.statics && om > 0 ? cx.g.value(static_cast<double>(i) * dt) / (om * om) : 0.0));
+        }
       }
-    }
   }
-  double worst = 0, peak = 0;
-  rd.out.peaks.clear();
-  for (std::size_t j = 0; j < cx.probes; ++j) {
-    TransientPeak best;
-    std::size_t at = 0;
-    for (std::size_t i = 0; i < N; ++i) {
-      const double gi = cx.g.value(static_cast<double>(i) * dt);
-      const double w = full[j][i] + corr[wi][j] * gi;
-      // The halved sum's own correction: the difference of the two corrections is quasi-static.
-      const double d = diff[j][i] + (corr[wi][j] - corr_half[wi][j]) * gi;
-      worst = std::max({worst, std::abs(d), std::abs(next[j][i])});
-      if (std::abs(w) > std::abs(best.w)) best = {w, static_cast<double>(i) * dt}, at = i;
+  std::vector<ChannelResult> out(chs.size());
+  for (std::size_t c = 0; c < chs.size(); ++c) {
+    const Channel& ch = chs[c];
+    double worst = 0, peak = 0;
+    for (std::size_t j = 0; j < cx.probes; ++j) {
+      TransientPeak best;
+      std::size_t at = 0;
+      for (std::size_t i = 0; i < N; ++i) {
+        const double gi = cx.g.value(static_cast<double>(i) * dt);
+        const double v = full[c][j][i] + ch.corr[j] * gi;
+        // The halved sum's own correction: the difference of the two corrections is quasi-static.
+        const double d = diff[c][j][i] + (ch.corr[j] - ch.corr_half[j]) * gi;
+        worst = std::max({worst, std::abs(d), std::abs(next[c][j][i])});
+        if (std::abs(v) > std::abs(best.w)) best = {v, static_cast<double>(i) * dt}, at = i;
+      }
+      best = refine_peak(cx, b, ch, j, at > 0 ? static_cast<double>(at - 1) * dt : 0.0,
+                         std::min(cx.rq.duration, static_cast<double>(at + 1) * dt), best);
+      out[c].peaks.push_back(best);
+      peak = std::max(peak, std::abs(best.w));
     }
-    best = refine_peak(cx, b, corr, j, at > 0 ? static_cast<double>(at - 1) * dt : 0.0,
-                       std::min(cx.rq.duration, static_cast<double>(at + 1) * dt), best);
-    rd.out.peaks.push_back(best);
-    peak = std::max(peak, std::abs(best.w));
+    const double size = std::max(peak, ch.scale);
+    out[c].estimate = size > 0 ? ch.factor * worst / size : (worst > 0 ? kNotMeasured : 0.0);
   }
-  rd.estimate = peak > 0 ? worst / peak : (worst > 0 ? kNotMeasured : 0.0);
+  return out;
+}
+
+/// The largest static moment share of one mode at any sampled point (probes and load points):
+/// the size below which a probe's moments are rounding (a probe at a pinned end).
+double moment_scale(const Result& r, const std::vector<LoadPoint>& loads, std::size_t probes) {
+  const ModeShapes& ms = r.mode_shapes;
+  double scale = 0;
+  for (std::size_t n = 0; n < ms.moments.size() && n < r.frequencies_rad_s.size(); ++n) {
+    const double om = r.frequencies_rad_s[n];
+    if (!(om > 0)) continue;
+    double P = 0;
+    for (std::size_t c = 0; c < ms.components.size(); ++c)
+      for (std::size_t i = 0; i < loads.size(); ++i)
+        P += loads[i].weight[static_cast<std::size_t>(ms.components[c])] * ms.values[n][c][probes + i];
+    for (double v : ms.moments[n]) scale = std::max(scale, std::abs(v * P) / (om * om));
+  }
+  return scale;
+}
+
+/// Peaks and estimates of w and (where the basis has them) My into the round.
+void peaks_and_estimate(const Context& cx, Round& rd, const std::vector<std::vector<double>>& corr,
+                        const std::vector<double>& moment_corr, double m_scale) {
+  const ModalBasis& b = rd.basis;
+  const int half = unsplit(b, std::max(1, b.used / 2));
+  const auto wi = static_cast<std::size_t>(cx.w_index);
+  std::vector<Channel> chs;
+  chs.push_back({[&b, wi](int n, std::size_t j) { return b.share(n, wi, j); }, corr[wi],
+                 correction(b, half, cx.statics)[wi], 0.0, 1.0});
+  if (!b.m.empty())
+    chs.push_back({[&b](int n, std::size_t j) { return b.m[static_cast<std::size_t>(n)][j]; }, moment_corr,
+                   moment_correction(b, half, cx.statics, cx.probes), m_scale, 1.25});
+  const std::vector<ChannelResult> res = peaks_and_estimates(cx, rd, chs, half);
+  rd.out.peaks = res[0].peaks;
+  rd.estimate = res[0].estimate;
+  if (res.size() > 1) {
+    rd.out.moment_peaks = res[1].peaks;
+    rd.moment_estimate = res[1].estimate;
+  }
 }
 
 /// The modal solve of `modes` + 1 modes with the shapes at the probes and at `loads`.
@@ -218,6 +312,7 @@ Scene modal_scene(const Scene& scene, int modes, const std::vector<LoadPoint>& l
   ShapeRequest sr;
   sr.points = scene.request.probes;
   for (const LoadPoint& p : loads) sr.points.push_back(p.at);
+  sr.moments = scene.is_beam() && scene.request.transient && scene.request.transient->moments;
   sub.request.modes = modes + 1;
   sub.request.shapes = sr;
   sub.request.probes.clear();
@@ -238,6 +333,7 @@ Round one_round(const Context& cx, const ModalSolve& solve, int modes, Result& r
     result.summary.raise(Status::NotConverged, "transient: its modal solve: " + r.summary.message);
   Round rd;
   rd.basis = basis_of(r, cx.probes, loads, modes + 1);
+  rd.moment_scale = moment_scale(r, loads, cx.probes);
   rd.out.components = rd.basis.components;
   return rd;
 }
@@ -277,6 +373,7 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
   int modes = transient_first_modes(scene);
   double planned = 0;
   Round rd;
+  std::string moment_note;
   for (int round = 0;; ++round) {
     const auto tr = std::chrono::steady_clock::now();
     if (round > 0) planned += estimate(transient_modal_scene(scene, modes));
@@ -285,12 +382,19 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
       cx.statics = nullptr;
       sc_note = "no static correction: the structure has rigid-body modes (no statics)";
     }
+    if (!rd.basis.m.empty() && cx.statics &&
+        !std::all_of(cx.statics->begin(), cx.statics->end(), [](const Deflection& d) { return d.has_forces; })) {
+      rd.basis.m.clear();
+      moment_note = "; no moment histories: the statics at the probes carry no internal forces for their correction";
+    }
     const std::vector<std::vector<double>> corr = correction(rd.basis, rd.basis.used, cx.statics);
-    peaks_and_estimate(cx, rd, corr);
+    const std::vector<double> mcorr = moment_correction(rd.basis, rd.basis.used, cx.statics, cx.probes);
+    peaks_and_estimate(cx, rd, corr, mcorr, rd.moment_scale);
     const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
     const bool complete = rd.basis.used == rd.basis.computed;
-    if (!(rd.estimate > scene.request.tolerance) || complete || round == 4 || 3.0 * took > time_left_s) {
-      histories(cx, rd.basis, corr, rd.out);
+    const bool met = !(rd.estimate > scene.request.tolerance) && !(rd.moment_estimate > scene.request.tolerance);
+    if (met || complete || round == 4 || 3.0 * took > time_left_s) {
+      histories(cx, rd.basis, corr, rd.basis.m.empty() ? nullptr : &mcorr, rd.out);
       break;
     }
     modes *= 2;
@@ -300,19 +404,30 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
   out.rigid_modes = rd.basis.rigid;
   out.static_correction = cx.statics != nullptr;
   out.error_estimate = rd.estimate;
+  if (!rd.basis.m.empty()) out.moment_error_estimate = rd.moment_estimate;
   out.load = cx.g.describe();
   out.note = fmt::format(
       "modal superposition of {} modes ({} rigid), each integrated exactly for the load's time function; {}; "
       "truncation estimate: the larger of the change when the modes are halved and the first neglected mode's "
-      "response{}",
+      "response{}{}",
       out.modes_used, out.rigid_modes,
       out.static_correction ? "static correction (mode acceleration) from the statics at the probes" : sc_note,
-      rd.resolution_note);
+      rd.resolution_note, moment_note);
+  if (!rd.basis.m.empty())
+    out.note += fmt::format("; moment histories My from the modes' own moments{}, estimate {:.2g}",
+                            out.static_correction ? " and the statics' (the same correction)" : "",
+                            out.moment_error_estimate);
   if (rd.basis.used == rd.basis.computed) out.note += fmt::format("; all {} modes of the model", rd.basis.computed);
   if (rd.estimate > scene.request.tolerance)
     sum.raise(Status::NotConverged,
               fmt::format("transient: truncation error estimate {:.2g} with {} modes exceeds the tolerance {:.2g}",
                           rd.estimate, out.modes_used, scene.request.tolerance));
+  if (!rd.basis.m.empty() && rd.moment_estimate > scene.request.tolerance)
+    sum.raise(Status::NotConverged,
+              fmt::format("transient: the moment histories' truncation estimate {:.2g} with {} modes exceeds the "
+                          "tolerance {:.2g} (after a suddenly applied point load a moment series converges only like "
+                          "1 / modes; request.transient.moments = false keeps w and the rotations)",
+                          rd.moment_estimate, out.modes_used, scene.request.tolerance));
   result.transient = std::move(out);
   sum.timings_s.transient = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return planned;

@@ -137,10 +137,12 @@ class LineAnalysis {
   /// section response (PrismModel::section_response) per component (dofs index), with their raw
   /// generalized masses int q^T M q dx and participations int q^T M r_d dx (r_d: unit rigid
   /// translation of the section; 0 where `directions` is false). Not normalized and without
-  /// total mass or note: the caller finishes them (finish_mode_shapes). Throws
-  /// std::runtime_error if a null vector or an integral cannot be computed.
+  /// total mass or note: the caller finishes them (finish_mode_shapes). With `moments` (beams), the
+  /// bending moment My at the points too: the section resultant of the state's forces there (the
+  /// value just beyond a node, x + 0; at x = L, L - 0). Throws std::runtime_error if a null vector
+  /// or an integral cannot be computed.
   ModeShapes mode_shapes(const ModeList& modes, const std::vector<std::array<double, 2>>& points,
-                         const std::vector<int>& components, std::array<bool, 3> directions);
+                         const std::vector<int>& components, std::array<bool, 3> directions, bool moments = false);
   /// Largest |K - K^T| / |K| of the segment matrices computed so far (rounding-small when
   /// the state matrices are Hamiltonian: a check on the operator).
   double max_asymmetry() const { return max_asymmetry_; }
@@ -221,7 +223,8 @@ class LineAnalysis {
                      const Eigen::VectorXd& amp, const Eigen::VectorXd& f, std::map<double, Eigen::VectorXd>& react);
   /// The shapes of the modes `which` (one class, one lambda; 0: rigid) into `out` (shapes.cpp).
   void cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
-                      const std::vector<double>& xs, const Eigen::MatrixXd& translations, ModeShapes& out);
+                      const std::vector<double>& xs, const Eigen::MatrixXd& translations, bool moments,
+                      ModeShapes& out);
 };
 
 }  // namespace modalbench::dtfm

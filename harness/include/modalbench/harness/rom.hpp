@@ -52,6 +52,13 @@ struct StateSpaceModel {
   /// The first neglected mode's share of the displacement rows at the band's top (the truncated
   /// tail's leading term), m/N.
   double first_neglected = kNotMeasured;
+  /// A bound on the whole truncated tail of the displacement rows over [0, band], m/N: with R(p) =
+  /// G(p, p) - sum_retained phi(p)^2 / omega^2 >= 0 the residual driving-point flexibility at each
+  /// input and output (the truncated modes' sum of phi^2 / omega^2), Cauchy-Schwarz gives
+  /// |tail(o, i)| <= sqrt(R(o) R(i)) band^2 / (omega_next^2 - band^2) with the static correction, and
+  /// sqrt(R(o) R(i)) omega_next^2 / (omega_next^2 - band^2) without. NaN without static flexibilities
+  /// (rigid-body modes) or without a neglected mode.
+  double tail_bound = kNotMeasured;
   std::string note;
 };
 

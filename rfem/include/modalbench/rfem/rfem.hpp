@@ -36,10 +36,11 @@
 
 namespace modalbench::rfem {
 
-/// The first `count` modes (columns of Z over z, M-orthonormal) at the scene's shape points,
-/// normalized and with their modal quantities (result.hpp, ModeShapes).
+/// The first `count` modes (columns of Z over z, M-orthonormal; eigenvalues lambda) at the scene's
+/// shape points, normalized and with their modal quantities (result.hpp, ModeShapes), and a beam's
+/// moments where the shape request asks for them.
 ModeShapes sample_shapes(const Scene& scene, const Model& model, const System& sys, const Eigen::MatrixXd& Z,
-                         long count);
+                         const Eigen::VectorXd& lambda, long count);
 
 class RfemSolver final : public Solver {
  public:
