@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <utility>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -55,26 +57,30 @@ class PieceMatrices {
   std::vector<Eigen::MatrixXd> A_;
 };
 
-std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
+/// The line's data are consistent (end springs, attachments and steps of the right sizes, inside
+/// [0, 1]); throws std::invalid_argument naming what is not.
+void check_line(const LineSystem& sys) {
   const int m = sys.m;
   if (static_cast<int>(sys.left_spring.size()) != m || static_cast<int>(sys.right_spring.size()) != m)
     throw std::invalid_argument("LineSystem: end springs must have m entries");
-  // Breakpoints: 0, the required interior nodes, 1; each gap cut so that |p| h <= 1.
-  std::vector<double> breaks = {0.0, 1.0};
-  for (double x : sys.nodes_at) {
+  for (double x : sys.nodes_at)
     if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("LineSystem: node outside [0, 1]");
-    breaks.push_back(x);
-  }
   for (const LineAttachment& a : sys.attachments) {
     if (!(a.xi >= 0.0 && a.xi <= 1.0)) throw std::invalid_argument("LineSystem: attachment outside [0, 1]");
     if (static_cast<int>(a.spring.size()) != m || static_cast<int>(a.mass.size()) != m)
       throw std::invalid_argument("LineSystem: an attachment needs m springs and m masses");
-    breaks.push_back(a.xi);
   }
-  for (const LinePiece& piece : sys.steps) {
+  for (const LinePiece& piece : sys.steps)
     if (!(piece.xi_from > 0.0 && piece.xi_from < 1.0)) throw std::invalid_argument("LineSystem: a step outside (0, 1)");
-    breaks.push_back(piece.xi_from);
-  }
+}
+
+std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
+  check_line(sys);
+  // Breakpoints: 0, the required interior nodes, 1; each gap cut so that |p| h <= 1.
+  std::vector<double> breaks = {0.0, 1.0};
+  for (double x : sys.nodes_at) breaks.push_back(x);
+  for (const LineAttachment& a : sys.attachments) breaks.push_back(a.xi);
+  for (const LinePiece& piece : sys.steps) breaks.push_back(piece.xi_from);
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   std::vector<double> xi = {0.0};
@@ -376,7 +382,77 @@ std::vector<LineReaction> line_reactions(const LineSystem& sys, const AssembledL
   return out;
 }
 
-int count_below(const LineSystem& sys, double lambda) { return assemble(sys, lambda).K.inertia().negative; }
+namespace {
+
+/// The line's features: 0, 1, the steps and the attachments (not the load and probe nodes, which
+/// do not change the count).
+std::vector<double> feature_nodes(const LineSystem& sys) {
+  std::vector<double> xi = {0.0, 1.0};
+  for (const LineAttachment& a : sys.attachments) xi.push_back(a.xi);
+  for (const LinePiece& piece : sys.steps) xi.push_back(piece.xi_from);
+  std::sort(xi.begin(), xi.end());
+  xi.erase(std::unique(xi.begin(), xi.end()), xi.end());
+  return xi;
+}
+
+}  // namespace
+
+/// How close to singular a long segment's condensed middle blocks may come in a count
+/// (LongSegment::min_pivot_scale) before the gap is cut unevenly.
+constexpr double kCountPivot = 1e-4;
+
+int count_below(const LineSystem& sys, double lambda) {
+  check_line(sys);
+  const int m = sys.m;
+  const std::vector<double> xi = feature_nodes(sys);
+  PieceMatrices A(sys, lambda);
+  // Each gap one long segment (long_segment_dynamic_stiffness): a base piece with |p| h <= 1, as
+  // line_nodes' segments (no clamped frequency below lambda), doubled to the gap's length; the
+  // middle nodes' negative pivots are the gap's J0. A gap whose condensed middle blocks come
+  // within kCountPivot of singular (lambda next to a clamped frequency of one of its halvings,
+  // where the condensation loses digits) is cut once more, unevenly, so that its pieces have other
+  // clamped frequencies.
+  std::vector<std::pair<double, LongSegment>> gaps;  // (left end, segment)
+  std::function<void(double, double, int)> add_gap = [&](double a, double b, int depth) {
+    const double len = b - a, mid = 0.5 * (a + b);
+    const double p = std::max(sys.max_wavenumber_at(lambda, mid), 1e-12);
+    if (!std::isfinite(p)) throw std::runtime_error("LineSystem: wavenumber bound is not finite");
+    const int levels = static_cast<int>(std::ceil(std::log2(std::max(1.0, std::ceil(len * p)))));
+    LongSegment seg = long_segment_dynamic_stiffness(A.at(mid), len, levels);
+    if (seg.min_pivot_scale < kCountPivot && levels > 0 && depth < 8) {
+      const double cut = a + len * 0.41421356237309503;  // sqrt(2) - 1: no halving's multiple
+      add_gap(a, cut, depth + 1);
+      add_gap(cut, b, depth + 1);
+      return;
+    }
+    gaps.emplace_back(a, std::move(seg));
+  };
+  for (std::size_t i = 0; i + 1 < xi.size(); ++i) add_gap(xi[i], xi[i + 1], 0);
+  std::vector<double> nodes;
+  for (const auto& g : gaps) nodes.push_back(g.first);
+  nodes.push_back(1.0);
+  BlockTridiagonal K(static_cast<int>(nodes.size()), m);
+  int j0 = 0;
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    j0 += gaps[i].second.clamped_below;
+    K.add_segment(static_cast<int>(i), gaps[i].second.K);
+  }
+  const int last = static_cast<int>(nodes.size()) - 1;
+  for (int j = 0; j < m; ++j) {
+    if (std::isinf(sys.left_spring[j])) K.hold(0, j);
+    else K.add_diagonal(0, j, sys.left_spring[j]);
+    if (std::isinf(sys.right_spring[j])) K.hold(last, j);
+    else K.add_diagonal(last, j, sys.right_spring[j]);
+  }
+  for (const LineAttachment& a : sys.attachments) {
+    const int node = static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), a.xi) - nodes.begin());
+    for (int j = 0; j < m; ++j) {
+      if (std::isinf(a.spring[j])) K.hold(node, j);
+      else K.add_diagonal(node, j, a.spring[j] - lambda * a.mass[j]);
+    }
+  }
+  return j0 + K.inertia().negative;
+}
 
 Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, double lambda, const Eigen::VectorXd& f) {
   const int m = sys.m;
@@ -518,9 +594,8 @@ LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint
       const int c = split_count(sp);
       if (c >= 0) return c;
     }
-    const AssembledLine a = assemble(sys, lam);
-    if (stats) stats->max_unknowns = std::max<long>(stats->max_unknowns, a.K.free_dofs());
-    return a.K.inertia().negative;
+    if (stats) stats->max_unknowns = std::max<long>(stats->max_unknowns, static_cast<long>(feature_nodes(sys).size()) * sys.m);
+    return count_below(sys, lam);
   };
   const double delta = kRigidThreshold * scale;
   const int below = N(-delta);

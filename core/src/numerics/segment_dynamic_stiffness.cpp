@@ -385,6 +385,8 @@ LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, i
     out.clamped_below = 2 * out.clamped_below + f.negative;
     out.log_abs_det_tdf = 2 * out.log_abs_det_tdf + f.log_abs;
     if (f.max_abs > 0) out.min_pivot_rel = std::min(out.min_pivot_rel, f.min_abs / f.max_abs);
+    if (const double scale = out.K.norm(); scale > 0)
+      out.min_pivot_scale = std::min(out.min_pivot_scale, f.min_abs / scale);
     auto solve = [&](const Eigen::MatrixXd& B) { return f.solve(B); };
     if (p) double_reflected(out.K, solve, *p);
     else double_in_place(out.K, solve, m, rhs, X);

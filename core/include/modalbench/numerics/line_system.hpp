@@ -73,7 +73,10 @@ struct AssembledLine {
 };
 AssembledLine assemble(const LineSystem& sys, double lambda);
 
-/// Number of natural frequencies with omega^2 < lambda (Wittrick-Williams).
+/// Number of natural frequencies with omega^2 < lambda (Wittrick-Williams), with nodes only at the
+/// line's features (ends, steps, attachments): each gap between them is one long segment built by
+/// doubling (long_segment_dynamic_stiffness) with its own J0, so a count costs O(log(gap length x
+/// wavenumber)) per gap instead of assemble's O(gap length x wavenumber) segments.
 int count_below(const LineSystem& sys, double lambda);
 
 /// The rigid-body motions of the unsupported line and how its supports act on them.

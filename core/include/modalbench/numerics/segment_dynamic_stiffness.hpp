@@ -72,6 +72,10 @@ struct LongSegment {
   double log_abs_det_tdf = 0;  ///< log |det Tdf| of the whole segment
   double asymmetry = 0;        ///< of the base piece (see segment_dynamic_stiffness)
   double min_pivot_rel = 1;    ///< smallest |eigenvalue| / norm of the condensed middle blocks
+  /// Smallest |pivot| of a condensed middle block relative to the norm of the two halves' matrix
+  /// it condenses (how near a halving's clamped frequency lambda lies, as the condensation sees
+  /// it; min_pivot_rel is 1 for a single field, whatever the pivot).
+  double min_pivot_scale = 1;
 };
 LongSegment long_segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, int levels,
                                            EndReflection reflection = EndReflection::Use);
