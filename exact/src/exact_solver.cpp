@@ -371,7 +371,9 @@ std::vector<OptionSpec> ExactSolver::option_specs() const {
   using T = OptionSpec::Type;
   return {{"navier_static_terms", T::Integer, "2000", {}, 10, 20000,
            "Navier plate statics: terms m, n <= this (the driving point converges like terms^-2)"},
-          {"navier_frf_terms", T::Integer, "300", {}, 10, 5000, "Navier plate FRF: terms m, n <= this"}};
+          {"navier_frf_terms", T::Integer, "300", {}, 10, 5000,
+           "Navier plate FRF: about this squared terms to start, balanced to the aspect (m / a = n / b), doubled "
+           "up to 64 times while the tail exceeds the tolerance"}};
 }
 
 // Beams: bisection on the Wittrick-Williams count over a line cut into pieces with |p| h <= 1, so

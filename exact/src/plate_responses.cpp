@@ -52,8 +52,8 @@ void navier_plate_reactions(const Scene& s, const std::vector<std::array<double,
 
 }  // namespace
 
-// Truncations: statics to m, n <= 2000, FRF to m, n <= 300; the tail estimates are checked
-// (FRF: against the static flexibility of the same pair, since |H| vanishes at anti-resonances).
+// Truncations: statics to m, n <= 2000; the FRF's below. The tail estimates are checked (FRF:
+// against the static flexibility of the same pair, since |H| vanishes at anti-resonances).
 void navier_statics(const Scene& s, int terms, Result& r) {
   const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
   std::vector<std::array<double, 3>> forces;
@@ -102,37 +102,71 @@ void navier_statics(const Scene& s, int terms, Result& r) {
   navier_plate_reactions(s, forces, patches, r);
 }
 
-void navier_frf(const Scene& s, int terms, Result& r) {
+namespace {
+
+/// The FRF samples on one truncation M x N, with the largest tail over them and the samples left
+/// out (exactly on an undamped resonance).
+struct FrfPass {
+  std::vector<FrfSample> samples;
+  double worst = 0;
+  int omitted = 0;
+};
+FrfPass frf_pass(const Scene& s, int M, int N) {
   const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
   const double rho_h = s.material.rho * s.geometry.height;
   const auto& f = *s.request.frf;
-  double worst = 0;
-  int omitted = 0;
-  const double flex = std::abs(
-      navier_receptance(a, b, D, rho_h, 0.0, f.excite[0], f.excite[1], f.observe[0], f.observe[1], 0.0, terms));
+  FrfPass out;
   for (int i = 0; i < f.points; ++i) {
     const double w = f.omega_min + (f.omega_max - f.omega_min) * i / (f.points - 1);
     double tail = 0;
     const auto rec = navier_receptance(a, b, D, rho_h, s.material.loss_factor, f.excite[0], f.excite[1],
-                                       f.observe[0], f.observe[1], w, terms, &tail);
+                                       f.observe[0], f.observe[1], w, M, N, &tail);
     if (!std::isfinite(std::abs(rec))) {  // exactly on an undamped resonance
-      ++omitted;
+      ++out.omitted;
       continue;
     }
-    r.frf.push_back({w, rec});
-    worst = std::max(worst, tail);
+    out.samples.push_back({w, rec});
+    out.worst = std::max(out.worst, tail);
   }
+  return out;
+}
+
+}  // namespace
+
+// The truncation is balanced to the aspect (navier_balanced_terms: about terms^2 terms at one
+// wavenumber in both directions) and doubled (M and N by sqrt 2) while the tail exceeds the
+// tolerance, at most 6 times (64 times the terms): the tail falls like 1 / terms.
+void navier_frf(const Scene& s, int terms, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
+  const double rho_h = s.material.rho * s.geometry.height;
+  const auto& f = *s.request.frf;
+  const auto [M0, N0] = navier_balanced_terms(a, b, terms);
+  const double flex = std::abs(navier_receptance(a, b, D, rho_h, 0.0, f.excite[0], f.excite[1], f.observe[0],
+                                                 f.observe[1], 0.0, M0, N0, nullptr));
+  int M = M0, N = N0;
+  FrfPass pass;
+  for (int round = 0;; ++round) {
+    const double grow = std::pow(std::sqrt(2.0), round);
+    M = static_cast<int>(std::lround(M0 * grow));
+    N = static_cast<int>(std::lround(N0 * grow));
+    pass = frf_pass(s, M, N);
+    if (!(flex > 0 && pass.worst > s.request.tolerance * flex) || round == 6) break;
+  }
+  r.frf = std::move(pass.samples);
+  const double worst = pass.worst;
+  r.summary.set_diagnostic("frf_series_terms_m", M);
+  r.summary.set_diagnostic("frf_series_terms_n", N);
   r.summary.set_diagnostic("frf_series_tail_relative_to_flexibility", flex > 0 ? worst / flex : 0.0);
-  note_frf_omissions(r.summary, omitted, f.points, "the Navier series is infinite there: an undamped resonance");
+  note_frf_omissions(r.summary, pass.omitted, f.points, "the Navier series is infinite there: an undamped resonance");
   if (flex > 0 && worst > s.request.tolerance * flex)
     r.summary.raise(Status::NotConverged,
-                    fmt::format("FRF: the Navier series truncated at {0} x {0} terms has an estimated error up to {1:.1e} "
-                                "of the static flexibility, above the tolerance {2:.1e}: raise navier_frf_terms",
-                                terms, worst / flex, s.request.tolerance));
+                    fmt::format("FRF: the Navier series truncated at {} x {} terms has an estimated error up to {:.1e} "
+                                "of the static flexibility, above the tolerance {:.1e}: raise navier_frf_terms",
+                                M, N, worst / flex, s.request.tolerance));
   else if (flex > 0 && worst > 1e-3 * flex)
     r.summary.warnings.push_back(fmt::format(
-        "Navier FRF series truncated at {0} x {0} terms: estimated error up to {1:.1e} of the static flexibility",
-        terms, worst / flex));
+        "Navier FRF series truncated at {} x {} terms: estimated error up to {:.1e} of the static flexibility", M, N,
+        worst / flex));
 }
 
 }  // namespace modalbench::exact::detail

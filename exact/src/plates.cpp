@@ -31,27 +31,42 @@ std::vector<double> navier_frequencies(double a, double b, double D, double rho_
 
 std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
                                        double xo, double yo, double omega, int terms, double* tail) {
+  return navier_receptance(a, b, D, rho_h, eta, xe, ye, xo, yo, omega, terms, terms, tail);
+}
+
+std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
+                                       double xo, double yo, double omega, int M, int N, double* tail) {
   // w = sum phi_mn(xe, ye) phi_mn(xo, yo) / (M (omega_mn^2 (1 + i eta) - omega^2)),
   // phi_mn = sin(m pi x / a) sin(n pi y / b), modal mass M = rho h a b / 4.
-  std::vector<double> sxe(terms + 1), sxo(terms + 1), sye(terms + 1), syo(terms + 1);
-  for (int m = 1; m <= terms; ++m) {
+  std::vector<double> sxe(M + 1), sxo(M + 1), sye(N + 1), syo(N + 1);
+  for (int m = 1; m <= M; ++m) {
     sxe[m] = std::sin(m * pi * xe / a);
     sxo[m] = std::sin(m * pi * xo / a);
-    sye[m] = std::sin(m * pi * ye / b);
-    syo[m] = std::sin(m * pi * yo / b);
   }
-  const double M = rho_h * a * b / 4.0, c = pi * pi * pi * pi * D / rho_h;
+  for (int n = 1; n <= N; ++n) {
+    sye[n] = std::sin(n * pi * ye / b);
+    syo[n] = std::sin(n * pi * yo / b);
+  }
+  const double modal_mass = rho_h * a * b / 4.0, c = pi * pi * pi * pi * D / rho_h;
   std::complex<double> sum = 0, half = 0;
-  for (int m = 1; m <= terms; ++m)
-    for (int n = 1; n <= terms; ++n) {
+  for (int m = 1; m <= M; ++m) {
+    const double xm = sxe[m] * sxo[m];
+    if (xm == 0) continue;
+    for (int n = 1; n <= N; ++n) {
       const double q = std::pow(m / a, 2) + std::pow(n / b, 2);
       const double w2 = c * q * q;
-      const std::complex<double> term = sxe[m] * sye[n] * sxo[m] * syo[n] / (M * (w2 * std::complex<double>(1, eta) - omega * omega));
+      const std::complex<double> term = xm * sye[n] * syo[n] / (modal_mass * (w2 * std::complex<double>(1, eta) - omega * omega));
       sum += term;
-      if (2 * m <= terms && 2 * n <= terms) half += term;
+      if (2 * m <= M && 2 * n <= N) half += term;
     }
+  }
   if (tail) *tail = std::abs(sum - half);
   return sum;
+}
+
+std::pair<int, int> navier_balanced_terms(double a, double b, int terms) {
+  const double r = std::sqrt(a / b);
+  return {std::max(1, static_cast<int>(std::lround(terms * r))), std::max(1, static_cast<int>(std::lround(terms / r)))};
 }
 
 std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <complex>
+#include <utility>
 #include <vector>
 
 #include "modalbench/exact/types.hpp"
@@ -30,6 +31,13 @@ std::vector<double> navier_frequencies(double a, double b, double D, double rho_
 /// bound on the truncation error.
 std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
                                        double xo, double yo, double omega, int terms, double* tail = nullptr);
+/// The same over m <= M, n <= N; `tail` gets |S(M, N) - S(M / 2, N / 2)|.
+std::complex<double> navier_receptance(double a, double b, double D, double rho_h, double eta, double xe, double ye,
+                                       double xo, double yo, double omega, int M, int N, double* tail);
+/// M x N about terms^2 terms with M / a = N / b: the truncation at one wavenumber in both directions
+/// (a square plate: terms x terms; a 30 x 0.6 m strip at 300: 2121 x 42, where 300 x 300 leaves
+/// the long direction 50 times less resolved than the short one).
+std::pair<int, int> navier_balanced_terms(double a, double b, int terms);
 /// A uniform pressure p (Pa, along +z) over the patch [x1, x2] x [y1, y2] of a plate.
 struct PressurePatch {
   double x1 = 0, x2 = 0, y1 = 0, y2 = 0, p = 0;
