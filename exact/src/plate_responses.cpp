@@ -52,52 +52,90 @@ void navier_plate_reactions(const Scene& s, const std::vector<std::array<double,
 
 }  // namespace
 
-// Truncations: statics to m, n <= 2000; the FRF's below. The tail estimates are checked (FRF:
-// against the static flexibility of the same pair, since |H| vanishes at anti-resonances).
-void navier_statics(const Scene& s, int terms, Result& r) {
-  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D();
-  std::vector<std::array<double, 3>> forces;
-  for (const auto& p : s.all_point_loads()) forces.push_back({p.x, p.y, p.Fz});
-  std::vector<PressurePatch> patches;
-  for (const DistributedLoad& q : s.all_distributed_loads())
-    patches.push_back({q.from[0], q.to[0], q.from[1], q.to[1], q.qz[0]});
-  double scale = 0, worst_tail = 0;
-  const double nu = s.material.nu;
+// The tail estimates are checked (FRF: against the static flexibility of the same pair, since |H|
+// vanishes at anti-resonances).
+namespace {
+
+/// The statics at every probe on one truncation M x N, with the largest deflection tail and the
+/// largest |w|.
+struct StaticPass {
+  std::vector<Deflection> probes;
+  std::vector<double> curvature_tail;
+  double worst_tail = 0, scale = 0;
+};
+StaticPass static_pass(const Scene& s, const std::vector<std::array<double, 3>>& forces,
+                       const std::vector<PressurePatch>& patches, int M, int N) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D(), nu = s.material.nu;
+  StaticPass out;
   for (const auto& p : s.request.probes) {
     double tail = 0, curvature_tail = 0;
     std::array<double, 3> c{};
-    const auto w = navier_static(a, b, D, forces, p[0], p[1], terms, &tail, patches, &c, &curvature_tail);
+    const auto w = navier_static(a, b, D, forces, p[0], p[1], M, N, &tail, patches, &c, &curvature_tail);
     Deflection d;
     d.position = p;
     d.w = w[0];
     d.theta_x = w[2];   // rotation about x: +dw/dy
     d.theta_y = -w[1];  // rotation about y: -dw/dx
-    // The moments (result.hpp) where their series has converged to the tolerance.
     d.forces.mx = D * (c[0] + nu * c[1]);
     d.forces.my = D * (c[1] + nu * c[0]);
     d.forces.mxy = D * (1 - nu) * c[2];
+    out.probes.push_back(d);
+    out.curvature_tail.push_back(curvature_tail);
+    out.worst_tail = std::max(out.worst_tail, tail);
+    out.scale = std::max(out.scale, std::abs(w[0]));
+  }
+  return out;
+}
+
+}  // namespace
+
+// The truncation is balanced to the aspect (navier_balanced_terms) and grown (M and N by sqrt 2)
+// while the deflections' tail exceeds the tolerance, at most 4 times.
+void navier_statics(const Scene& s, int terms, Result& r) {
+  const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D(), nu = s.material.nu;
+  std::vector<std::array<double, 3>> forces;
+  for (const auto& p : s.all_point_loads()) forces.push_back({p.x, p.y, p.Fz});
+  std::vector<PressurePatch> patches;
+  for (const DistributedLoad& q : s.all_distributed_loads())
+    patches.push_back({q.from[0], q.to[0], q.from[1], q.to[1], q.qz[0]});
+  const auto [M0, N0] = navier_balanced_terms(a, b, terms);
+  int M = M0, N = N0;
+  StaticPass pass;
+  for (int round = 0;; ++round) {
+    const double grow = std::pow(std::sqrt(2.0), round);
+    M = static_cast<int>(std::lround(M0 * grow));
+    N = static_cast<int>(std::lround(N0 * grow));
+    pass = static_pass(s, forces, patches, M, N);
+    if (!(pass.scale > 0 && pass.worst_tail > s.request.tolerance * pass.scale) || round == 4) break;
+  }
+  for (std::size_t i = 0; i < pass.probes.size(); ++i) {
+    Deflection d = pass.probes[i];
+    // The moments (result.hpp) where their series has converged to the tolerance.
     const double m_scale = std::max({std::abs(d.forces.mx), std::abs(d.forces.my), std::abs(d.forces.mxy)});
-    d.has_forces = D * (1 + std::abs(nu)) * curvature_tail <= s.request.tolerance * m_scale;
+    const double m_tail = D * (1 + std::abs(nu)) * pass.curvature_tail[i];
+    d.has_forces = m_tail <= s.request.tolerance * m_scale;
     if (!d.has_forces) {
       d.forces = {};
       r.summary.warnings.push_back(fmt::format(
           "plate moments at ({:g}, {:g}) m not given: their Navier series at {} x {} terms is uncertain by {:.1e} N*m/m "
           "(under a point force Kirchhoff's moments are infinite)",
-          p[0], p[1], terms, terms, D * (1 + std::abs(nu)) * curvature_tail));
+          d.position[0], d.position[1], M, N, m_tail));
     }
     r.deflections.push_back(d);
-    worst_tail = std::max(worst_tail, tail);
-    scale = std::max(scale, std::abs(w[0]));
   }
+  const double worst_tail = pass.worst_tail, scale = pass.scale;
+  r.summary.set_diagnostic("static_series_terms_m", M);
+  r.summary.set_diagnostic("static_series_terms_n", N);
   if (scale > 0 && worst_tail > s.request.tolerance * scale)
     r.summary.raise(Status::NotConverged,
-                    fmt::format("deflections: the Navier static series truncated at {0} x {0} terms has an estimated "
-                                "relative error {1:.1e}, above the tolerance {2:.1e} ([request] tolerance): raise "
+                    fmt::format("deflections: the Navier static series truncated at {} x {} terms has an estimated "
+                                "relative error {:.1e}, above the tolerance {:.1e} ([request] tolerance): raise "
                                 "navier_static_terms",
-                                terms, worst_tail / scale, s.request.tolerance));
+                                M, N, worst_tail / scale, s.request.tolerance));
   else if (scale > 0 && worst_tail > 1e-5 * scale)
-    r.summary.warnings.push_back(fmt::format(
-        "Navier static series truncated at {0} x {0} terms: estimated relative error {1:.1e}", terms, worst_tail / scale));
+    r.summary.warnings.push_back(fmt::format("Navier static series truncated at {} x {} terms: estimated relative "
+                                             "error {:.1e}",
+                                             M, N, worst_tail / scale));
   r.summary.set_diagnostic("static_series_tail_relative", scale > 0 ? worst_tail / scale : 0.0);
   navier_plate_reactions(s, forces, patches, r);
 }

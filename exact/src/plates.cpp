@@ -72,15 +72,24 @@ std::pair<int, int> navier_balanced_terms(double a, double b, int terms) {
 std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
                                     double x, double y, int terms, double* tail, const std::vector<PressurePatch>& patches,
                                     std::array<double, 3>* curvature, double* curvature_tail) {
+  return navier_static(a, b, D, forces, x, y, terms, terms, tail, patches, curvature, curvature_tail);
+}
+
+std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
+                                    double x, double y, int M, int N, double* tail,
+                                    const std::vector<PressurePatch>& patches, std::array<double, 3>* curvature,
+                                    double* curvature_tail) {
   // w = sum_mn W_mn sin(m pi x/a) sin(n pi y/b), W_mn = P_mn / (D pi^4 q^2), P_mn the load's
   // coefficient: 4 F sin sin / (a b) for a point force, the patch's closed form (header).
   std::array<double, 3> out{0, 0, 0}, half{0, 0, 0}, curv{0, 0, 0}, curv_half{0, 0, 0};
-  std::vector<double> sx(terms + 1), cx(terms + 1), sy(terms + 1), cy(terms + 1);
-  for (int m = 1; m <= terms; ++m) {
+  std::vector<double> sx(M + 1), cx(M + 1), sy(N + 1), cy(N + 1);
+  for (int m = 1; m <= M; ++m) {
     sx[m] = std::sin(m * pi * x / a);
     cx[m] = std::cos(m * pi * x / a);
-    sy[m] = std::sin(m * pi * y / b);
-    cy[m] = std::cos(m * pi * y / b);
+  }
+  for (int n = 1; n <= N; ++n) {
+    sy[n] = std::sin(n * pi * y / b);
+    cy[n] = std::cos(n * pi * y / b);
   }
   // Each load as a product of an x factor (by m) and a y factor (by n).
   struct Separable {
@@ -88,30 +97,27 @@ std::array<double, 3> navier_static(double a, double b, double D, const std::vec
   };
   std::vector<Separable> loads;
   for (const auto& f : forces) {
-    Separable l{std::vector<double>(terms + 1), std::vector<double>(terms + 1)};
-    for (int m = 1; m <= terms; ++m) {
-      l.fx[m] = 4.0 * f[2] * std::sin(m * pi * f[0] / a) / (a * b);
-      l.fy[m] = std::sin(m * pi * f[1] / b);
-    }
+    Separable l{std::vector<double>(M + 1), std::vector<double>(N + 1)};
+    for (int m = 1; m <= M; ++m) l.fx[m] = 4.0 * f[2] * std::sin(m * pi * f[0] / a) / (a * b);
+    for (int n = 1; n <= N; ++n) l.fy[n] = std::sin(n * pi * f[1] / b);
     loads.push_back(std::move(l));
   }
   for (const auto& p : patches) {
-    Separable l{std::vector<double>(terms + 1), std::vector<double>(terms + 1)};
-    for (int m = 1; m <= terms; ++m) {
+    Separable l{std::vector<double>(M + 1), std::vector<double>(N + 1)};
+    for (int m = 1; m <= M; ++m)
       l.fx[m] = 4.0 * p.p / (m * pi) * (std::cos(m * pi * p.x1 / a) - std::cos(m * pi * p.x2 / a));
-      l.fy[m] = (std::cos(m * pi * p.y1 / b) - std::cos(m * pi * p.y2 / b)) / (m * pi);
-    }
+    for (int n = 1; n <= N; ++n) l.fy[n] = (std::cos(n * pi * p.y1 / b) - std::cos(n * pi * p.y2 / b)) / (n * pi);
     loads.push_back(std::move(l));
   }
   for (const auto& l : loads)
-    for (int m = 1; m <= terms; ++m)
-      for (int n = 1; n <= terms; ++n) {
+    for (int m = 1; m <= M; ++m)
+      for (int n = 1; n <= N; ++n) {
         const double q = std::pow(m / a, 2) + std::pow(n / b, 2);
         const double W = l.fx[m] * l.fy[n] / (D * std::pow(pi, 4) * q * q);
         const double km = m * pi / a, kn = n * pi / b;
         const std::array<double, 3> t = {W * sx[m] * sy[n], W * km * cx[m] * sy[n], W * kn * sx[m] * cy[n]};
         const std::array<double, 3> c = {-W * km * km * sx[m] * sy[n], -W * kn * kn * sx[m] * sy[n], W * km * kn * cx[m] * cy[n]};
-        const bool in_half = 2 * m <= terms && 2 * n <= terms;
+        const bool in_half = 2 * m <= M && 2 * n <= N;
         for (int k = 0; k < 3; ++k) {
           out[k] += t[k];
           curv[k] += c[k];

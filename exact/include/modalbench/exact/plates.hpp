@@ -52,6 +52,11 @@ std::array<double, 3> navier_static(double a, double b, double D, const std::vec
                                     double x, double y, int terms, double* tail = nullptr,
                                     const std::vector<PressurePatch>& patches = {},
                                     std::array<double, 3>* curvature = nullptr, double* curvature_tail = nullptr);
+/// The same over m <= M, n <= N (navier_balanced_terms); the tails against S(M / 2, N / 2).
+std::array<double, 3> navier_static(double a, double b, double D, const std::vector<std::array<double, 3>>& forces,
+                                    double x, double y, int M, int N, double* tail,
+                                    const std::vector<PressurePatch>& patches, std::array<double, 3>* curvature,
+                                    double* curvature_tail);
 
 /// The reactions of a simply supported Kirchhoff plate under the same loads (plate_reactions.cpp):
 /// Levy single series whose strips are solved in closed form, terms doubled from 64 until the
