@@ -370,7 +370,7 @@ Capability ExactSolver::supports(const Scene& s) const {
 std::vector<OptionSpec> ExactSolver::option_specs() const {
   using T = OptionSpec::Type;
   return {{"navier_static_terms", T::Integer, "2000", {}, 10, 20000,
-           "Navier plate statics: about this squared terms, balanced to the aspect (m / a = n / b), grown up to 4 "
+           "Navier plate statics: about this squared terms, balanced to the aspect (m / a = n / b), doubled up to 4 "
            "times while the deflections' tail exceeds the tolerance (the driving point converges like terms^-2)"},
           {"navier_frf_terms", T::Integer, "300", {}, 10, 5000,
            "Navier plate FRF: about this squared terms to start, balanced to the aspect (m / a = n / b), doubled "

@@ -90,7 +90,7 @@ StaticPass static_pass(const Scene& s, const std::vector<std::array<double, 3>>&
 }  // namespace
 
 // The truncation is balanced to the aspect (navier_balanced_terms) and grown (M and N by sqrt 2)
-// while the deflections' tail exceeds the tolerance, at most 4 times.
+// while the deflections' tail exceeds the tolerance: at most 4 times, 16 times the terms.
 void navier_statics(const Scene& s, int terms, Result& r) {
   const double a = s.geometry.length, b = s.geometry.width, D = s.plate_D(), nu = s.material.nu;
   std::vector<std::array<double, 3>> forces;
