@@ -179,21 +179,30 @@ def test_the_gil_is_released_while_a_backend_works():
     assert ticks > 5
 
 
-def test_a_transient_comes_as_arrays_and_peaks_at_twice_the_statics():
-    # An undamped simply supported Euler-Bernoulli beam under a midspan step force: every excited
-    # mode has omega_n = n^2 omega_1, so the midspan reaches twice F L^3 / (48 EI) at T1 / 2.
-    L, EI, rhoA, F = 1.0, 2.1e11 * 0.1**4 / 12, 7850.0 * 0.01, -1000.0
-    w1 = (np.pi / L) ** 2 * np.sqrt(EI / rhoA)
-    T1 = 2 * np.pi / w1
-    s = mb.Scene.from_dict({
+# The step-loaded beam of the transient tests: simply supported Euler-Bernoulli, L = 1 m, 0.1 x 0.1 m
+# steel, a force F at midspan switched on at t = 0, sampled 100 times over the first period T1.
+_STEP_L, _STEP_EI, _STEP_RHOA, _STEP_F = 1.0, 2.1e11 * 0.1**4 / 12, 7850.0 * 0.01, -1000.0
+_STEP_T1 = 2 * np.pi / ((np.pi / _STEP_L) ** 2 * np.sqrt(_STEP_EI / _STEP_RHOA))
+
+
+def _step_beam(probe, tolerance, moments):
+    return mb.Scene.from_dict({
         "scene": {"name": "step", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
-        "geometry": {"length": L, "width": 0.1, "height": 0.1},
+        "geometry": {"length": _STEP_L, "width": 0.1, "height": 0.1},
         "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
         "supports": {"x0": "pinned", "xL": "pinned"},
-        "loads": [{"x": 0.5, "Fz": F}],
-        "request": {"probes": [0.5], "tolerance": 1e-5,
-                    "transient": {"duration": T1, "step": T1 / 100, "load": "step", "moments": False}},
+        "loads": [{"x": 0.5, "Fz": _STEP_F}],
+        "request": {"probes": [probe], "tolerance": tolerance,
+                    "transient": {"duration": _STEP_T1, "step": _STEP_T1 / 100, "load": "step",
+                                  "moments": moments}},
     })
+
+
+def test_a_transient_comes_as_arrays_and_peaks_at_twice_the_statics():
+    # Every mode the midspan force excites has omega_n = n^2 omega_1, so the midspan reaches twice
+    # F L^3 / (48 EI) at T1 / 2.
+    L, EI, F, T1 = _STEP_L, _STEP_EI, _STEP_F, _STEP_T1
+    s = _step_beam(0.5, 1e-5, False)
     r = mb.solve(s, "exact")
     assert r.ok, r.message
     w = r.history("w")
@@ -211,17 +220,8 @@ def test_a_beam_s_moment_history_doubles_its_static_moment_at_half_the_period():
     # x = L / 4 is twice the static one, -F x / 2 (sagging positive), within the moments' estimate.
     # (After a suddenly applied point load the moment series converges like 1 / modes in time, at
     # any x: a tolerance of 1e-2 takes a few dozen modes.)
-    L, EI, rhoA, F = 1.0, 2.1e11 * 0.1**4 / 12, 7850.0 * 0.01, -1000.0
-    T1 = 2 * np.pi / ((np.pi / L) ** 2 * np.sqrt(EI / rhoA))
-    s = mb.Scene.from_dict({
-        "scene": {"name": "step", "kind": "beam", "physics": "bending", "theory": "euler-bernoulli"},
-        "geometry": {"length": L, "width": 0.1, "height": 0.1},
-        "material": {"E": 2.1e11, "nu": 0.3, "rho": 7850.0},
-        "supports": {"x0": "pinned", "xL": "pinned"},
-        "loads": [{"x": 0.5, "Fz": F}],
-        "request": {"probes": [0.25], "tolerance": 1e-2,
-                    "transient": {"duration": T1, "step": T1 / 100, "load": "step"}},
-    })
+    F = _STEP_F
+    s = _step_beam(0.25, 1e-2, True)
     r = mb.solve(s, "exact")
     assert r.ok, r.message
     My = r.history("My")
