@@ -24,6 +24,7 @@
 #include <mutex>
 #include <thread>
 
+#include "campbell_text.hpp"
 #include "rom_command.hpp"
 #include "modalbench/harness/calculix.hpp"
 #include "modalbench/harness/comparison.hpp"
@@ -151,9 +152,9 @@ std::string forces_line(const mb::Scene& scene, const mb::Deflection& d) {
   if (scene.is_plate())
     return fmt::format("\n      moments mx = {:.6e}, my = {:.6e}, mxy = {:.6e} N*m/m", f.mx, f.my, f.mxy);
   std::string out = fmt::format("\n      My = {:.6e} N*m (sagging +), Qz = dMy/dx = {:.6e} N", f.My, f.Qz);
-  if (scene.physics != mb::Physics::Bending) out += fmt::format(", N = {:.6e} N", f.N);
-  if (scene.physics == mb::Physics::Spatial)
-    out += fmt::format(", Mz = {:.6e} N*m, Qy = {:.6e} N, T = {:.6e} N*m", f.Mz, f.Qy, f.T);
+  if (mb::carries_axial(scene.physics)) out += fmt::format(", N = {:.6e} N", f.N);
+  if (mb::carries_xy(scene.physics)) out += fmt::format(", Mz = {:.6e} N*m, Qy = {:.6e} N", f.Mz, f.Qy);
+  if (mb::carries_torsion(scene.physics)) out += fmt::format(", T = {:.6e} N*m", f.T);
   return out;
 }
 
@@ -163,9 +164,9 @@ std::string probe_line(const mb::Scene& scene, const mb::Deflection& d) {
     return fmt::format("({:g}, {:g}) m: w = {:.8e} m, theta_x = {:.8e} rad, theta_y = {:.8e} rad", d.position[0],
                        d.position[1], d.w, d.theta_x, d.theta_y);
   std::string out = fmt::format("x = {:g} m: w = {:.8e} m, theta_y = {:.8e} rad", d.position[0], d.w, d.theta_y);
-  if (scene.physics != mb::Physics::Bending) out += fmt::format(", u = {:.8e} m", d.u);
-  if (scene.physics == mb::Physics::Spatial)
-    out += fmt::format(", v = {:.8e} m, theta_z = {:.8e} rad, theta_x = {:.8e} rad", d.v, d.theta_z, d.theta_x);
+  if (mb::carries_axial(scene.physics)) out += fmt::format(", u = {:.8e} m", d.u);
+  if (mb::carries_xy(scene.physics)) out += fmt::format(", v = {:.8e} m, theta_z = {:.8e} rad", d.v, d.theta_z);
+  if (mb::carries_torsion(scene.physics)) out += fmt::format(", theta_x = {:.8e} rad", d.theta_x);
   return out;
 }
 
@@ -237,6 +238,7 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   }
   if (verbose && !xp.note.empty()) std::cout << "  extrapolation: " << xp.note << "\n";
   if (!r.transient.empty()) print_transient(scene, r.transient, verbose);
+  if (!r.campbell.empty()) print_campbell(r.campbell, verbose);
   for (const auto& n : scene.notes) std::cout << "  note: " << n << "\n";
   for (const auto& w : sum.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << fmt::format("  time {:.4g} s{}\n", sum.total_time_s, verbose ? "" : " (--verbose: method and options)");

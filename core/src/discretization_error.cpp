@@ -186,6 +186,40 @@ void judge_deflections(const Result& fine, const detail::MeshSolve& coarse, cons
                                    third_defl ? " and " + coarser->spec : std::string(), e.tolerance));
 }
 
+/// The Campbell frequencies' estimate (worst over spins and ranks, relative to |f| + spin) into
+/// `e`; what exceeds the tolerance into `problems`. Ranks pair only where both meshes give as many
+/// frequencies at a spin.
+void judge_campbell(const Result& fine, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser,
+                    Gci& gci, ErrorEstimate& e, std::vector<std::string>& problems) {
+  const Campbell& f = fine.campbell;
+  const Campbell& c = coarse.result->campbell;
+  const Campbell* cc = gci.third() ? &coarser->result->campbell : nullptr;
+  if (f.points.size() != c.points.size()) return;
+  double worst = 0, at_spin = 0;
+  for (std::size_t p = 0; p < f.points.size(); ++p) {
+    const CampbellPoint& a = f.points[p];
+    const CampbellPoint& b = c.points[p];
+    const CampbellPoint* d = cc && cc->points.size() == f.points.size() ? &cc->points[p] : nullptr;
+    if (a.frequencies_rad_s.size() != b.frequencies_rad_s.size()) continue;
+    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
+      const double qcc = d && d->frequencies_rad_s.size() == a.frequencies_rad_s.size() ? d->frequencies_rad_s[i] : kNotMeasured;
+      const double scale = std::max(std::abs(a.frequencies_rad_s[i]), std::abs(b.frequencies_rad_s[i])) + a.spin_rad_s;
+      if (!(scale > 0)) continue;
+      const double rel = gci(a.frequencies_rad_s[i], b.frequencies_rad_s[i], qcc, scale);
+      if (!(rel <= worst)) {
+        worst = rel;
+        at_spin = a.spin_rad_s;
+      }
+    }
+  }
+  e.campbell = worst;
+  if (!(worst <= e.tolerance))
+    problems.push_back(fmt::format("Campbell: estimated discretization error {:.2g} of the whirl frequencies (at spin "
+                                   "{:g} rad/s; mesh {} against {}) exceeds the tolerance {:.2g} ([request] tolerance): "
+                                   "use a finer mesh",
+                                   worst, at_spin, fine.summary.mesh, coarse.spec, e.tolerance));
+}
+
 /// How the estimate was formed, in words (ErrorEstimate::note).
 std::string estimate_note(const ErrorEstimate& e, const Result& fine, const detail::MeshSolve& coarse,
                           const std::optional<detail::MeshSolve>& coarser, bool third, bool other_is_finer) {
@@ -226,6 +260,7 @@ detail::Verdict detail::judge_discretization(const Scene& scene, double order, c
   if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty())
     judge_frequencies(fine, coarse, coarser, order, gci, e, problems);
   if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, scene.geometry.length, gci, e, problems);
+  if (scene.rotor && !fine.campbell.empty()) judge_campbell(fine, coarse, coarser, gci, e, problems);
   e.note = estimate_note(e, fine, coarse, coarser, gci.third(), other_is_finer);
   return {e, problems};
 }

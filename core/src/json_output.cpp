@@ -8,6 +8,30 @@ namespace {
 // JSON has no Inf/NaN: such a value becomes null (and the summary already flags it).
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+/// [rotor]'s Campbell diagram: per spin its whirl frequencies, senses and growth rates; the criticals.
+nlohmann::json campbell_json(const Campbell& c) {
+  using nlohmann::json;
+  json points = json::array();
+  for (const CampbellPoint& p : c.points) {
+    json f = json::array(), w = json::array(), g = json::array();
+    for (double v : p.frequencies_rad_s) f.push_back(num(v));
+    for (Whirl x : p.whirl) w.push_back(to_string(x));
+    for (double v : p.growth_rates_1_s) g.push_back(num(v));
+    points.push_back({{"spin_rad_s", num(p.spin_rad_s)}, {"frequencies_rad_s", f}, {"whirl", w}, {"growth_rate_1_s", g}});
+  }
+  json fw = json::array(), bw = json::array(), un = json::array();
+  for (double v : c.forward_criticals) fw.push_back(num(v));
+  for (double v : c.backward_criticals) bw.push_back(num(v));
+  for (double v : c.unstable_spins) un.push_back(num(v));
+  return {{"frame", c.frame},
+          {"points", points},
+          {"critical_speeds", {{"forward", fw}, {"backward", bw}, {"note", c.criticals_note}}},
+          {"unstable_spins_rad_s", un},
+          {"max_backward_error", num(c.max_backward_error)},
+          {"units", "rad/s (spin, frequencies, critical speeds), 1/s (growth rates)"},
+          {"note", c.note}};
+}
+
 /// request.transient's histories: per probe its position, each component's history, and the peak of w.
 nlohmann::json transient_json(const Scene& scene, const Transient& tr) {
   using nlohmann::json;
@@ -90,12 +114,12 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
     }
     e["My_N_m"] = num(f.My);
     e["Qz_N"] = num(f.Qz);
-    if (scene.physics != Physics::Bending) e["N_N"] = num(f.N);
-    if (scene.physics == Physics::Spatial) {
+    if (carries_axial(scene.physics)) e["N_N"] = num(f.N);
+    if (carries_xy(scene.physics)) {
       e["Mz_N_m"] = num(f.Mz);
       e["Qy_N"] = num(f.Qy);
-      e["T_N_m"] = num(f.T);
     }
+    if (carries_torsion(scene.physics)) e["T_N_m"] = num(f.T);
     return e;
   };
   // One probe's deflection, in the components the scene carries (also for the extrapolated ones).
@@ -105,12 +129,12 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
       e["position"] = json::array({d.position[0]});
       e["w"] = num(d.w);
       e["rotation"] = num(d.theta_y);
-      if (scene.physics != Physics::Bending) e["u"] = num(d.u);
-      if (scene.physics == Physics::Spatial) {
+      if (carries_axial(scene.physics)) e["u"] = num(d.u);
+      if (carries_xy(scene.physics)) {
         e["v"] = num(d.v);
-        e["theta_x"] = num(d.theta_x);
         e["theta_z"] = num(d.theta_z);
       }
+      if (carries_torsion(scene.physics)) e["theta_x"] = num(d.theta_x);
     } else {
       e["position"] = json::array({d.position[0], d.position[1]});
       e["w"] = num(d.w);
@@ -172,11 +196,12 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
   }
   const auto& t = r.summary.timings_s;
   j["timing_s"] = {{"build", t.build}, {"modes", t.modes}, {"statics", t.statics}, {"frf", t.frf},
-                   {"error_estimate", t.error_estimate}, {"transient", t.transient}, {"total", r.summary.total_time_s}};
+                   {"error_estimate", t.error_estimate}, {"transient", t.transient}, {"campbell", t.campbell}, {"total", r.summary.total_time_s}};
   const auto& ee = r.summary.error_estimate;
   j["error_estimate"] = {{"frequencies", num(ee.frequencies)},
                          {"deflections", num(ee.deflections)},
                          {"frequencies_solve", num(ee.frequencies_solve)},
+                         {"campbell", num(ee.campbell)},
                          {"tolerance", num(ee.tolerance)},
                          {"coarse_mesh", ee.coarse_mesh},
                          {"coarser_mesh", ee.coarser_mesh},
@@ -205,6 +230,7 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
                          {"note", xp.note}};
   }
   if (!r.transient.empty()) j["transient"] = transient_json(scene, r.transient);
+  if (!r.campbell.empty() || scene.rotor) j["campbell"] = campbell_json(r.campbell);
   json diag = json::object();
   for (const auto& [name, v] : r.summary.diagnostics) diag[name] = num(v);
   j["diagnostics"] = diag;

@@ -23,9 +23,11 @@ std::string to_string(Physics p) {
     case Physics::Bending: return "bending";
     case Physics::Planar: return "planar";
     case Physics::Spatial: return "spatial";
+    case Physics::Lateral: return "lateral";
   }
   return "?";
 }
+std::string to_string(Rotor::Frame f) { return f == Rotor::Frame::Stationary ? "stationary" : "rotating"; }
 std::string to_string(Theory t) {
   switch (t) {
     case Theory::EulerBernoulli: return "euler-bernoulli";
@@ -123,6 +125,7 @@ std::vector<int> Scene::shape_components() const {
     case Physics::Bending: return {2, 4};
     case Physics::Planar: return {0, 2, 4};
     case Physics::Spatial: return {0, 1, 2, 3, 4, 5};
+    case Physics::Lateral: return {1, 2, 4, 5};
   }
   return {};
 }

@@ -30,8 +30,8 @@ Support scene_detail::read_support_node(const Reader& r, const toml::node* n, co
   Support sp;
   sp.kind = "springs";
   std::set<std::string> allowed = {"translational", "rotational"};
-  if (s.is_beam() && s.physics != Physics::Bending) allowed.insert("axial");
-  if (s.is_beam() && s.physics == Physics::Spatial) allowed.insert("torsional");
+  if (s.is_beam() && carries_axial(s.physics)) allowed.insert("axial");
+  if (s.is_beam() && carries_torsion(s.physics)) allowed.insert("torsional");
   r.only_keys(t, full, allowed);
   auto spring = [&](const std::string& k) {
     double v = r.number(t, full, k, /*allow_inf=*/true);
@@ -95,7 +95,8 @@ void read_scene_table(const Reader& r, const toml::table& root, Scene& s) {
     if (physics == "bending") s.physics = Physics::Bending;
     else if (physics == "planar") s.physics = Physics::Planar;
     else if (physics == "spatial") s.physics = Physics::Spatial;
-    else r.fail("scene.physics", "unknown beam physics '" + physics + "' (expected bending, planar or spatial)");
+    else if (physics == "lateral") s.physics = Physics::Lateral;
+    else r.fail("scene.physics", "unknown beam physics '" + physics + "' (expected bending, planar, spatial or lateral)");
   } else {
     if (physics != "bending") r.fail("scene.physics", "a plate has physics 'bending' (got '" + physics + "')");
     s.physics = Physics::Bending;
@@ -208,6 +209,7 @@ void read_loads(const Reader& r, const toml::table& root, Scene& s) {
     if (s.is_plate()) comps = {"Fz"};
     else if (s.physics == Physics::Bending) comps = {"Fz", "My"};
     else if (s.physics == Physics::Planar) comps = {"Fx", "Fz", "My"};
+    else if (s.physics == Physics::Lateral) comps = {"Fy", "Fz", "My", "Mz"};
     else comps = {"Fx", "Fy", "Fz", "Mx", "My", "Mz"};
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const std::string where = fmt::format("loads[{}]", i);
@@ -349,7 +351,7 @@ Scene parse_scene(std::string_view text, const std::string& source) {
                      std::string("TOML syntax: ") + std::string(e.description()));
   }
   r.only_keys(root, "", {"scene", "geometry", "segments", "material", "supports", "masses", "loads", "line_loads", "pressures",
-                         "gravity", "request", "backend"});
+                         "gravity", "request", "rotor", "backend"});
   Scene s;
   s.source = source;
   read_scene_table(r, root, s);
@@ -362,6 +364,7 @@ Scene parse_scene(std::string_view text, const std::string& source) {
   read_distributed_loads(r, root, s);
   read_gravity(r, root, s);
   read_request(r, root, s);
+  scene_detail::read_rotor(r, root, s);
   read_backend_options(r, root, s);
   validate(s);
   return s;

@@ -66,8 +66,8 @@ std::array<double, 2> interval(const Reader& r, const toml::table& t, const std:
 
 void read_line_loads(const Reader& r, const toml::array& arr, Scene& s) {
   std::set<std::string> comps = {"qz"};
-  if (s.physics != Physics::Bending) comps.insert("qx");
-  if (s.physics == Physics::Spatial) comps.insert("qy");
+  if (carries_axial(s.physics)) comps.insert("qx");
+  if (carries_xy(s.physics)) comps.insert("qy");
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const std::string where = fmt::format("line_loads[{}]", i);
     const toml::table& t = *arr.get(i)->as_table();
@@ -214,13 +214,13 @@ void scene_detail::read_gravity(const Reader& r, const toml::table& root, Scene&
   std::array<double, 3> v{};
   for (int k = 0; k < 3; ++k) v[static_cast<std::size_t>(k)] = r.number_node(*a->get(static_cast<std::size_t>(k)), fmt::format("gravity.g[{}]", k));
   // Components the model has no field for would be dropped silently: refused instead.
-  const bool axial = s.is_beam() && s.physics != Physics::Bending, lateral = s.is_beam() && s.physics == Physics::Spatial;
+  const bool axial = s.is_beam() && carries_axial(s.physics), lateral = s.is_beam() && carries_xy(s.physics);
   if (v[0] != 0.0 && !axial)
     r.fail("gravity.g[0]", fmt::format("a {} carries no load along x (physics '{}'): give gx = 0 or a planar or spatial beam",
                                        to_string(s.kind), to_string(s.physics)));
   if (v[1] != 0.0 && !lateral)
     r.fail("gravity.g[1]", fmt::format("a {} carries no load along y: give gy = 0{}", to_string(s.kind),
-                                       s.is_beam() ? " or a spatial beam" : ""));
+                                       s.is_beam() ? " or a spatial or lateral beam" : ""));
   s.gravity = v;
 }
 

@@ -127,6 +127,11 @@ void read_distributed_loads(const Reader& r, const toml::table& root, Scene& s);
 /// [gravity].
 void read_gravity(const Reader& r, const toml::table& root, Scene& s);
 
+/// [rotor] (scene_parse_rotor.cpp).
+void read_rotor(const Reader& r, const toml::table& root, Scene& s);
+/// The rules of a rotor scene (scene_parse_rotor.cpp; validate() calls it).
+void validate_rotor(const Reader& r, const Scene& s);
+
 /// [request.transient] (scene_parse_transient.cpp).
 void read_transient(const Reader& r, const toml::node& n, Scene& s);
 

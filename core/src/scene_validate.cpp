@@ -183,9 +183,12 @@ void validate(const Scene& s) {
     if (s.is_plate()) check_range(r, fmt::format("loads[{}].y", i), p.y, 0.0, s.geometry.width);
     if (s.is_plate() && (p.Fx != 0 || p.Fy != 0 || p.Mz != 0))
       r.fail(fmt::format("loads[{}]", i), "a plate in bending takes Fz, Mx and My (no in-plane Fx, Fy, Mz)");
+    if (s.is_beam() && s.physics == Physics::Lateral && (p.Fx != 0 || p.Mx != 0))
+      r.fail(fmt::format("loads[{}]", i), "a lateral (rotor) model carries no axial force or torque (no Fx, Mx)");
   }
   if (s.request.modes < 0) r.fail("request.modes", "must be >= 0");
   validate_transient(r, s);
+  scene_detail::validate_rotor(r, s);
 }
 
 }  // namespace modalbench

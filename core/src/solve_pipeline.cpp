@@ -150,8 +150,11 @@ bool SolvePipeline::check_request() {
   if (rq.modes > 0 && !cap_.modes) missing_.push_back("natural frequencies");
   if (!rq.probes.empty() && !cap_.statics) missing_.push_back("static deflections");
   if (rq.frf && !cap_.frf) missing_.push_back("FRF");
-  const bool wants_something = rq.modes > 0 || !rq.probes.empty() || rq.frf.has_value();
-  const bool can_something = (rq.modes > 0 && cap_.modes) || (!rq.probes.empty() && cap_.statics) || (rq.frf && cap_.frf);
+  const bool rotor = scene_.rotor.has_value();
+  if (rotor && !cap_.campbell) missing_.push_back("Campbell diagram ([rotor])");
+  const bool wants_something = rq.modes > 0 || !rq.probes.empty() || rq.frf.has_value() || rotor;
+  const bool can_something = (rq.modes > 0 && cap_.modes) || (!rq.probes.empty() && cap_.statics) ||
+                             (rq.frf && cap_.frf) || (rotor && cap_.campbell);
   if (!cap_.any() || (wants_something && !can_something)) {
     sum.raise(Status::Unsupported, cap_.reason.empty() ? "nothing requested is supported" : cap_.reason);
     return false;
@@ -164,6 +167,7 @@ bool SolvePipeline::check_request() {
   }
   if (!cap_.statics) scene_.request.probes.clear();
   if (!cap_.frf) scene_.request.frf.reset();
+  if (!cap_.campbell) scene_.rotor.reset();
   if (rq.transient && !cap_.modes) {
     missing_.push_back("transient response (it superposes modes)");
     scene_.request.transient.reset();
@@ -560,6 +564,9 @@ void SolvePipeline::finish() {
     for (double v : history) finite = finite && std::isfinite(v);
   for (const auto& peaks : {result_.transient.peaks, result_.transient.moment_peaks})
     for (const auto& p : peaks) finite = finite && std::isfinite(p.w) && std::isfinite(p.time_s);
+  for (const auto& p : result_.campbell.points)
+    for (const auto* v : {&p.frequencies_rad_s, &p.growth_rates_1_s})
+      finite = finite && std::all_of(v->begin(), v->end(), [](double x) { return std::isfinite(x); });
   if (!finite && sum.status == Status::Success) sum.raise(Status::NumericalIssue, "non-finite value in the result");
   if (finite && severity(sum.status) < severity(Status::ResourceLimit))
     for (std::string& w : plausibility_warnings(scene_, result_)) sum.warnings.push_back(std::move(w));

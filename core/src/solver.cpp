@@ -67,6 +67,17 @@ MassModel parse_mass_model(const std::string& text, const std::string& source, c
   throw InputError(source, key, "must be consistent or lumped (got '" + text + "')");
 }
 
+std::string to_string(Whirl w) {
+  switch (w) {
+    case Whirl::Forward: return "forward";
+    case Whirl::Backward: return "backward";
+    case Whirl::Mixed: return "mixed";
+    case Whirl::Planar: return "planar";
+    case Whirl::None: return "none";
+  }
+  return "?";
+}
+
 std::string to_string(ModeFamily f) {
   switch (f) {
     case ModeFamily::BendingXZ: return "bending-xz";

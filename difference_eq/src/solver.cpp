@@ -147,6 +147,8 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
   // The model restrictions (Euler-Bernoulli, bending in x-z) are stated by do_solve in the
   // result's warnings; here only what is not computed at all.
   c.reason = "FRF is not implemented by difference_eq (modes and statics only)";
+  if (s.rotor)
+    c.reason += "; no rotor model yet (the appendix's A3 rotating-frame matrices): no Campbell diagram";
   if (!s.point_supports.empty() && rigid_body_modes(beam_of(s, 1)) > 0) {
     c.statics = false;
     c.reason += "; statics with supports between the ends need end supports that hold the beam by themselves "

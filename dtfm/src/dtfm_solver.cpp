@@ -78,8 +78,13 @@ void add_plate_reactions(const Scene& s, const PrismModel& model, const FieldInt
 
 }  // namespace
 
-Capability DtfmSolver::supports(const Scene&) const {
+Capability DtfmSolver::supports(const Scene& s) const {
   Capability c;
+  if (s.is_beam() && s.physics == Physics::Lateral) {
+    c.reason = "dtfm has no lateral (rotor) prism model yet: no Campbell diagram; for a shaft's modes at rest, "
+               "physics = \"spatial\"";
+    return c;
+  }
   c.modes = c.statics = c.frf = true;
   return c;
 }

@@ -18,6 +18,7 @@ using detail::BarLine;
 using detail::BendingLine;
 using detail::kInf;
 using detail::note_unknowns;
+using detail::bending_restrained;
 
 Frequencies to_frequencies(const LineSpectrum& spec, const SliceStats& st) {
   Frequencies f;
@@ -29,9 +30,9 @@ Frequencies to_frequencies(const LineSpectrum& spec, const SliceStats& st) {
   return f;
 }
 
-/// Rigid translation and rotation in bending are restrained by two translational springs (at
-/// distinct points), or one and a rotational one.
-bool bending_restrained(EndSprings l, EndSprings r, const PointAttachments& points) {
+}  // namespace
+
+bool detail::bending_restrained(EndSprings l, EndSprings r, const PointAttachments& points) {
   int translational = (l.translational > 0) + (r.translational > 0), rotational = (l.rotational > 0) + (r.rotational > 0);
   for (const PointAttachment& p : points) {
     translational += p.springs.translational > 0;
@@ -39,6 +40,8 @@ bool bending_restrained(EndSprings l, EndSprings r, const PointAttachments& poin
   }
   return translational >= 2 || (translational >= 1 && rotational >= 1);
 }
+
+namespace {
 
 bool bar_restrained(double k_left, double k_right, const PointAttachments& points) {
   bool any = k_left > 0 || k_right > 0;

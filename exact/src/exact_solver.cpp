@@ -10,6 +10,7 @@
 #include "beam_attachments.hpp"
 #include "exact_shapes.hpp"
 #include "plate_responses.hpp"
+#include "rotor.hpp"
 #include "modalbench/timer.hpp"
 
 namespace modalbench::exact {
@@ -69,17 +70,19 @@ void beam_modes(const Scene& s, ModeList& list, Result& r) {
   auto fxz = beam_bending_frequencies(bending_xz(s), bend(s.x0), bend(s.xL), k, line_points(s, ModeFamily::BendingXZ));
   list.add(fxz, ModeFamily::BendingXZ);
   note(r, fxz);
-  if (s.physics != Physics::Bending) {
+  if (carries_axial(s.physics)) {
     auto fa = bar_frequencies(axial_bar(s), s.x0.axial, s.xL.axial, k, line_points(s, ModeFamily::Axial));
     list.add(fa, ModeFamily::Axial);
     note(r, fa);
   }
-  if (s.physics == Physics::Spatial) {
+  if (carries_xy(s.physics)) {
     auto fxy = beam_bending_frequencies(bending_xy(s), bend(s.x0), bend(s.xL), k, line_points(s, ModeFamily::BendingXY));
     list.add(fxy, ModeFamily::BendingXY);
+    note(r, fxy);
+  }
+  if (carries_torsion(s.physics)) {
     auto ft = bar_frequencies(torsion_bar(s), s.x0.torsional, s.xL.torsional, k, line_points(s, ModeFamily::Torsion));
     list.add(ft, ModeFamily::Torsion);
-    note(r, fxy);
     note(r, ft);
   }
 }
@@ -116,7 +119,7 @@ void beam_statics(const Scene& s, Result& r) {
       defl[i].forces.My = wz[i].M;
       defl[i].forces.Qz = wz[i].Q;
     }
-    if (s.physics != Physics::Bending) {
+    if (carries_axial(s.physics)) {
       std::vector<double> N;
       auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da, &ra, &N);
       for (std::size_t i = 0; i < xs.size(); ++i) {
@@ -124,16 +127,20 @@ void beam_statics(const Scene& s, Result& r) {
         defl[i].forces.N = N[i];
       }
     }
-    if (s.physics == Physics::Spatial) {
+    if (carries_xy(s.physics)) {
       auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy, &ry);
-      std::vector<double> T;
-      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt, &T);
       for (std::size_t i = 0; i < xs.size(); ++i) {
         defl[i].v = wy[i].w;
         defl[i].theta_z = wy[i].theta;
-        defl[i].theta_x = t[i];
         defl[i].forces.Mz = wy[i].M;
         defl[i].forces.Qy = wy[i].Q;
+      }
+    }
+    if (carries_torsion(s.physics)) {
+      std::vector<double> T;
+      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt, &T);
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        defl[i].theta_x = t[i];
         defl[i].forces.T = T[i];
       }
     }
@@ -250,7 +257,7 @@ ModeShapes shapes_frame(const Scene& s) {
     for (const Segment& p : s.beam_pieces()) out.total_mass += p.material.rho * p.properties().A * p.length();
     for (const PointMass& pm : s.masses) out.total_mass += pm.mass;  // as rfem and dtfm
   }
-  out.directions = {s.is_beam() && s.physics != Physics::Bending, s.is_beam() && s.physics == Physics::Spatial, true};
+  out.directions = {s.is_beam() && carries_axial(s.physics), s.is_beam() && carries_xy(s.physics), true};
   return out;
 }
 
@@ -345,6 +352,10 @@ Capability ExactSolver::supports(const Scene& s) const {
   Capability c;
   if (s.is_beam()) {
     c.modes = c.statics = c.frf = true;
+    if (s.rotor) {
+      c.reason = detail::rotor_refusal(s);
+      c.campbell = c.reason.empty();
+    }
     return c;
   }
   if (!s.point_supports.empty() || !s.masses.empty()) {
@@ -424,6 +435,10 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
   ModeList list;
   if (s.is_beam()) solve_beam(s, list, r, timer);
   else solve_plate(s, o, list, r, timer);
+  if (s.rotor) {
+    r.campbell = detail::rotor_campbell(s, r.summary);
+    r.summary.timings_s.campbell += timer.lap();
+  }
   auto& modes = list.modes;
   std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.omega < y.omega; });
   if (static_cast<int>(modes.size()) > s.request.modes) modes.resize(s.request.modes);

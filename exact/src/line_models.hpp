@@ -114,6 +114,10 @@ struct BarLine {
   }
 };
 
+/// Rigid translation and rotation in bending are restrained by two translational springs (at
+/// distinct points), or one and a rotational one.
+bool bending_restrained(EndSprings l, EndSprings r, const PointAttachments& points);
+
 inline void note_unknowns(long* unknowns, const AssembledLine& a) {
   if (unknowns) *unknowns = std::max<long>(*unknowns, a.K.free_dofs());
 }

@@ -274,6 +274,13 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
       c.notes.push_back("the scene's time history ([request.transient]) is not in the timed runs: each back-end's "
                         "default solve of it is shown in its own section");
     }
+    c.rotor_runs = rotor_runs(input, registry, opt);
+    c.rotor = input.rotor;
+    if (scene.rotor) {
+      scene.rotor.reset();
+      c.notes.push_back("the scene's Campbell diagram ([rotor]) is not in the timed runs (they time the shaft at "
+                        "rest): each back-end's default solve of it is shown in its own section");
+    }
     c.scene = scene;
     for (const Solver* s : registry.all()) {
       const Capability cap = s->supports(scene);

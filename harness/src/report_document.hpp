@@ -65,6 +65,9 @@ std::string data_path(const Context& ctx, const std::string& file);
 /// The time-history section of a scene with [request.transient] (report_transient.cpp).
 void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid);
 
+/// The Campbell section of a rotor scene ([rotor]) (report_campbell.cpp).
+void write_campbell(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid);
+
 /// The mode-shape section: MAC matrices and overlaid shapes (report_shapes.cpp).
 void write_shapes(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid);
 

@@ -323,6 +323,7 @@ void write_scene(Doc& doc, const SceneComparison& c, Context& ctx) {
   write_frf(doc, c, ctx, sid);
   write_deflections(doc, c, ctx, sid);
   write_transient(doc, c, ctx, sid);
+  write_campbell(doc, c, ctx, sid);
 }
 
 }  // namespace modalbench::report_detail

@@ -118,6 +118,8 @@ class Result:
         tr = doc.get("transient")
         self.transient = tr
         self.time_s = np.array(tr["time_s"], dtype=float) if tr else None
+        # A rotor's Campbell diagram ([rotor]; None where not asked or not computed: see as_dict).
+        self.campbell = doc.get("campbell")
 
     @property
     def ok(self):
@@ -128,6 +130,17 @@ class Result:
         if not self.mode_shapes:
             return None
         return np.array(self.mode_shapes[component], dtype=float)
+
+    def whirl(self):
+        """The Campbell diagram as arrays: spins [spin], frequencies and growth rates [spin, root]
+        (rad/s, 1/s) and the whirl senses [spin][root] (None without one)."""
+        if not self.campbell or not self.campbell["points"]:
+            return None
+        pts = self.campbell["points"]
+        return (np.array([p["spin_rad_s"] for p in pts], dtype=float),
+                np.array([[_num(f) for f in p["frequencies_rad_s"]] for p in pts], dtype=float),
+                np.array([[_num(g) for g in p["growth_rate_1_s"]] for p in pts], dtype=float),
+                [list(p["whirl"]) for p in pts])
 
     def history(self, component="w"):
         """The transient's histories of one component as an array [probe, time] (None without one)."""

@@ -55,6 +55,7 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     case Physics::Bending: m.active = dofs::kBendingXZ; break;
     case Physics::Planar: m.active = dofs::kPlanarXZ; break;
     case Physics::Spatial: m.active = dofs::kSpatial; break;
+    case Physics::Lateral: m.active = dofs::kLateral; break;
   }
   for (int dof : m.active) m.dof_family.push_back(beam_family(dof));
   m.length_scale = L;
@@ -76,7 +77,10 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     // The piece(s) of beam it stands for; its length's inertia about the cell's middle.
     const detail::CellMass cm = detail::cell_mass(pieces, lo, hi, 0.5 * (lo + hi));
     r.mass = cm.mass;
-    r.inertia = Vector3d(cm.rho_Ip, cm.length_inertia + (eb ? 0.0 : cm.rho_Iy), cm.length_inertia + (eb ? 0.0 : cm.rho_Iz));
+    // A lateral (rotor) model carries no twist: its Jx is the polar inertia of the gyroscopic
+    // moment, which an Euler-Bernoulli shaft (no rotary inertia) does not have; its discs' Jx does.
+    const double jx = s.physics == Physics::Lateral && eb ? 0.0 : cm.rho_Ip;
+    r.inertia = Vector3d(jx, cm.length_inertia + (eb ? 0.0 : cm.rho_Iy), cm.length_inertia + (eb ? 0.0 : cm.rho_Iz));
     r.cell = box(lo, hi, -bw / 2, bw / 2, -bh / 2, bh / 2);
     r.label = fmt::format("rfe {}", j);
     m.elements.push_back(r);
@@ -199,8 +203,8 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
 
   // A characteristic low frequency: the lowest of bending (cantilever-like) and axial/torsion.
   double hint = 0.35 * std::pow(pi / L, 2) * std::sqrt(mat.E * std::min(sec.Iy, sec.Iz) / (mat.rho * sec.A));
-  if (s.physics != Physics::Bending) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.E / mat.rho));
-  if (s.physics == Physics::Spatial) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.G * sec.J / (mat.rho * sec.Ip)));
+  if (carries_axial(s.physics)) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.E / mat.rho));
+  if (carries_torsion(s.physics)) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.G * sec.J / (mat.rho * sec.Ip)));
   m.omega_hint = hint;
   m.check();
   return m;

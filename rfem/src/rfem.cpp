@@ -11,6 +11,7 @@
 #include "modalbench/rfem/builders.hpp"
 #include "modalbench/rfem/system.hpp"
 #include "analysis_detail.hpp"
+#include "rotor.hpp"
 
 namespace modalbench::rfem {
 
@@ -55,6 +56,10 @@ Capability RfemSolver::supports(const Scene& s) const {
   Capability c;
   if (s.is_beam() || s.is_plate()) {
     c.modes = c.statics = c.frf = true;
+    if (s.rotor) {
+      c.reason = detail::rotor_scene_refusal(s);
+      c.campbell = c.reason.empty();
+    }
     return c;
   }
   c.reason = "rfem builds beams and plates only";
@@ -180,7 +185,10 @@ ResourceEstimate RfemSolver::estimate(const Scene& s, const Discretization& mesh
   const double k = std::max<double>(rq.modes, modal_frf ? static_cast<double>(options.resolved.get_integer("frf_modes")) : 0.0);
   if (s.is_beam() && mesh.counts.size() == 1) {
     const double n = mesh.counts[0];
-    const double d = s.physics == Physics::Spatial ? 3.0 : s.physics == Physics::Planar ? 1.5 : 1.0;
+    const double d = s.physics == Physics::Spatial   ? 3.0
+                     : s.physics == Physics::Lateral ? 2.0
+                     : s.physics == Physics::Planar  ? 1.5
+                                                     : 1.0;
     double bytes = 0, t = 0;
     // Lanczos: ~k^1.5 per segment (measured 10 s for 200 modes of 8192 segments, 1.8 s for 6 of 160,000).
     if (k > 0) { bytes = std::max(bytes, 3.1e3 * n * d * (1 + k / 60)); t += n * d * (6e-6 + 4.3e-7 * std::pow(k, 1.5)); }
@@ -243,7 +251,8 @@ Model RfemSolver::build(const Scene& s, const Discretization& mesh, const Resolv
     if (n < 1) throw InputError(src, "--mesh", fmt::format("a beam needs N >= 1 segments (got {})", n));
     if (n > 2000000) throw InputError(src, "--mesh", fmt::format("N = {} exceeds the limit of 2000000 segments", n));
     BeamOptions bo;
-    if (options && options->get_choice("beam_rigid_shear") == "joint-coordinates")
+    // A rotor's Campbell diagram solves the quadratic eigenproblem without multipliers.
+    if ((options && options->get_choice("beam_rigid_shear") == "joint-coordinates") || s.rotor)
       bo.rigid_shear = RigidShear::JointCoordinates;
     return build_beam(s, n, bo);
   }
@@ -382,6 +391,16 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
     t0 = Clock::now();
     method += "; FRF: " + solve_frf(s, model, sys, modal_frf ? &md : nullptr, frf_modes, opt, r);
     sum.timings_s.frf += since(t0);
+  }
+  if (s.rotor) {
+    t0 = Clock::now();
+    if (const std::string why = detail::campbell_refusal(s, model, sys); !why.empty()) {
+      sum.raise(Status::Unsupported, why);
+    } else {
+      r.campbell = detail::rotor_campbell(s, model, sys, sum);
+      method += "; Campbell: " + r.campbell.note;
+    }
+    sum.timings_s.campbell += since(t0);
   }
   sum.method = method;
 }

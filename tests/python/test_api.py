@@ -259,3 +259,19 @@ def test_a_reduced_model_goes_to_scipy():
     m = mb.rom(mb.load_scene(SCENES / "beam_step_load.toml"), "exact", inputs=[1.0], outputs=[0.5], modes=4)
     sys = m.to_scipy()
     assert isinstance(sys, signal.StateSpace) and sys.A.shape == (8, 8)
+
+
+def test_a_rotor_s_campbell_diagram_splits_each_frequency_into_backward_and_forward_whirl():
+    # The pinned Timoshenko shaft: at rest each bending frequency is a pair; spinning, the backward
+    # whirl falls and the forward rises (the section's gyroscopic moment), and the first forward
+    # critical speed lies between the first forward whirl at rest and at the highest spin.
+    r = mb.solve(mb.load_scene(SCENES / "rotor_timoshenko_shaft.toml"), "exact")
+    assert r.ok, r.message
+    spins, freqs, growth, whirl = r.whirl()
+    assert freqs.shape == (31, 4) and spins[0] == 0.0 and spins[-1] == 3000.0
+    assert abs(freqs[0, 1] / freqs[0, 0] - 1) <= 1e-12
+    assert all(w[:2] == ["backward", "forward"] for w in whirl[1:])
+    assert np.all(np.diff(freqs[:, 0]) < 0) and np.all(np.diff(freqs[:, 1]) > 0)
+    assert np.all(growth == 0)
+    first = r.campbell["critical_speeds"]["forward"][0]
+    assert freqs[0, 1] < first < freqs[-1, 1]

@@ -109,6 +109,8 @@ struct PhaseTimes {
   double error_estimate = 0;
   /// The time history (request.transient): its modal solves and the superposition.
   double transient = 0;
+  /// The Campbell diagram ([rotor]): the whirl at every spin and the critical speeds.
+  double campbell = 0;
 };
 
 
@@ -134,6 +136,9 @@ struct ErrorEstimate {
   double frequencies = kNotMeasured;   ///< max over paired nonzero modes of the estimate above, relative to f_h
   double deflections = kNotMeasured;   ///< max over probes, relative to max |w_h|
   double frequencies_solve = kNotMeasured;  ///< the solve's own bound included in `frequencies` (NaN: none given)
+  /// A rotor's whirl frequencies (Result::campbell), each paired by rank at its spin: the largest
+  /// estimate relative to |frequency| + spin (a rotating frame's frequency passes 0 at a critical).
+  double campbell = kNotMeasured;
   double tolerance = kNotMeasured;     ///< the scene's request.tolerance it was judged against
   std::string coarse_mesh;            ///< the mesh it was checked against ("" when none)
   std::string coarser_mesh;           ///< the third mesh, 2H ("" when the family has none)
@@ -197,6 +202,36 @@ struct Transient {
   std::string load;  ///< the time function, in words
   std::string note;  ///< how it was made, and anything a user should know
   bool empty() const { return time_s.empty(); }
+};
+
+/// The sense of a whirl orbit: forward (in the spin's sense, from +y towards +z), backward, mixed
+/// (the stations of one mode disagree), planar (the orbit is a line: no sense, e.g. an asymmetric
+/// shaft at spin 0), or none (a root that does not oscillate: frequency 0).
+enum class Whirl { Forward, Backward, Mixed, Planar, None };
+std::string to_string(Whirl);  ///< forward, backward, mixed, planar, none
+
+/// The whirl of a spinning shaft at one spin speed (scene [rotor]), in the scene's frame.
+struct CampbellPoint {
+  double spin_rad_s = 0;
+  /// The lowest request.modes whirl frequencies |Im lambda|, rad/s, ascending (each whirl mode once;
+  /// at spin 0 a forward and backward pair are the two planes' repeated frequency).
+  std::vector<double> frequencies_rad_s;
+  std::vector<Whirl> whirl;               ///< per frequency
+  std::vector<double> growth_rates_1_s;   ///< per frequency, Re lambda, 1/s (> 0: unstable)
+};
+/// A Campbell diagram: whirl against spin, and the critical speeds (a whirl frequency, seen from the
+/// ground, equal to the spin), solved for, not read off the samples.
+struct Campbell {
+  std::string frame;  ///< stationary | rotating
+  std::vector<CampbellPoint> points;
+  /// Critical speeds, rad/s, ascending: every one up to the highest spin asked, and the next above.
+  std::vector<double> forward_criticals, backward_criticals;
+  std::string criticals_note;  ///< how they were found, or why a list is not given
+  std::vector<double> unstable_spins;  ///< the spins asked with a growth rate above the checks' rounding
+  /// Largest normwise backward error of the whirl eigenpairs (kNotMeasured where not checked so).
+  double max_backward_error = kNotMeasured;
+  std::string note;  ///< the method, and anything a user should know
+  bool empty() const { return points.empty(); }
 };
 
 struct Summary {
@@ -265,6 +300,7 @@ struct Result {
   ModeShapes mode_shapes;  ///< when the scene asks for them (request.shapes)
   Extrapolation extrapolated;  ///< Richardson values from the error estimate's meshes (may be empty)
   Transient transient;  ///< when the scene asks for it (request.transient)
+  Campbell campbell;    ///< a rotor scene's whirl against spin ([rotor])
   Summary summary;
 
   bool ok() const { return summary.status == Status::Success; }

@@ -33,6 +33,7 @@ inline const std::vector<int> kBendingXZ = {Uz, Ry};           ///< beam bending
 inline const std::vector<int> kPlanarXZ = {Ux, Uz, Ry};        ///< axial + bending in x-z
 inline const std::vector<int> kPlate = {Uz, Rx, Ry};           ///< plate bending
 inline const std::vector<int> kSpatial = {Ux, Uy, Uz, Rx, Ry, Rz};
+inline const std::vector<int> kLateral = {Uy, Uz, Ry, Rz};     ///< a rotor's bending in x-y and x-z
 }  // namespace dofs
 
 /// [r]x: the matrix with [r]x v = r x v.

@@ -42,7 +42,12 @@ enum class Physics {
   Bending,  ///< transverse bending in x-z only
   Planar,   ///< axial + bending in x-z
   Spatial,  ///< axial, bending in x-z and x-y, torsion (6 DOF)
+  Lateral,  ///< a rotor's lateral model: bending in x-z and x-y (v, w, theta_y, theta_z), no axial, no torsion
 };
+/// Which fields a beam of this physics carries besides w and theta_y.
+inline bool carries_axial(Physics p) { return p == Physics::Planar || p == Physics::Spatial; }
+inline bool carries_xy(Physics p) { return p == Physics::Spatial || p == Physics::Lateral; }
+inline bool carries_torsion(Physics p) { return p == Physics::Spatial; }
 /// The continuum theory the `exact` reference solves (back-ends state their own model).
 enum class Theory { EulerBernoulli, Timoshenko, Kirchhoff, Mindlin };
 
@@ -238,6 +243,18 @@ struct Request {
 
 /// A back-end option as written in the scene (`[backend.NAME]` key = value), as text: the
 /// back-end's OptionSpec validates it when it solves (Solver::solve).
+/// `[rotor]`: the beam is a shaft spinning about +x (physics "lateral"), and its whirl is asked at
+/// each of the spin speeds (the Campbell diagram, Result::campbell).
+struct Rotor {
+  std::vector<double> spin;  ///< rad/s, >= 0, ascending
+  /// The frame the whirl is seen from: the ground's (stationary: gyroscopic terms only; needs an
+  /// axisymmetric shaft), or the shaft's own (rotating: Coriolis and spin softening; asymmetric
+  /// sections allowed).
+  enum class Frame { Stationary, Rotating };
+  Frame frame = Frame::Stationary;
+};
+std::string to_string(Rotor::Frame);  ///< stationary, rotating
+
 struct SceneOption {
   std::string key;
   std::string text;
@@ -267,6 +284,7 @@ struct Scene {
   /// per area of a plate) and of its point masses (m g at each).
   std::optional<std::array<double, 3>> gravity;
   Request request;
+  std::optional<Rotor> rotor;  ///< `[rotor]` (beams of physics "lateral" only)
   std::vector<std::string> notes;  ///< defaults applied, errata cited, etc.
   /// [backend.NAME] tables, by back-end name (names checked against the registry by the caller).
   std::map<std::string, std::vector<SceneOption>> backend_options;
@@ -289,7 +307,8 @@ struct Scene {
   /// plate {x_i, y_j} with x fastest.
   std::vector<std::array<double, 2>> shape_points() const;
   /// The components of a shape, as dofs indices 0..5 (u, v, w, theta_x, theta_y, theta_z): beam
-  /// bending {w, theta_y}; planar {u, w, theta_y}; spatial all six; plate {w, theta_x, theta_y}.
+  /// bending {w, theta_y}; planar {u, w, theta_y}; spatial all six; lateral {v, w, theta_y, theta_z};
+  /// plate {w, theta_x, theta_y}.
   std::vector<int> shape_components() const;
 };
 

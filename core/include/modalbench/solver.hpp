@@ -120,7 +120,8 @@ double default_memory_limit();
 struct Capability {
   bool modes = false, statics = false, frf = false;
   std::string reason;  ///< why something is not supported (empty if everything is)
-  bool any() const { return modes || statics || frf; }
+  bool campbell = false;  ///< a rotor scene's Campbell diagram and critical speeds ([rotor])
+  bool any() const { return modes || statics || frf || campbell; }
 };
 
 namespace detail {

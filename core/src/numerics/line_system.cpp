@@ -67,8 +67,9 @@ void check_line(const LineSystem& sys) {
     if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("LineSystem: node outside [0, 1]");
   for (const LineAttachment& a : sys.attachments) {
     if (!(a.xi >= 0.0 && a.xi <= 1.0)) throw std::invalid_argument("LineSystem: attachment outside [0, 1]");
-    if (static_cast<int>(a.spring.size()) != m || static_cast<int>(a.mass.size()) != m)
-      throw std::invalid_argument("LineSystem: an attachment needs m springs and m masses");
+    if (static_cast<int>(a.spring.size()) != m || static_cast<int>(a.mass.size()) != m ||
+        !(a.gyro.empty() || static_cast<int>(a.gyro.size()) == m))
+      throw std::invalid_argument("LineSystem: an attachment needs m springs and m masses (and m gyro terms or none)");
   }
   for (const LinePiece& piece : sys.steps)
     if (!(piece.xi_from > 0.0 && piece.xi_from < 1.0)) throw std::invalid_argument("LineSystem: a step outside (0, 1)");
@@ -108,21 +109,22 @@ bool same_length(double h, double last_h) { return std::abs(h - last_h) <= 1e-15
 /// and point masses per DOF.
 struct Site {
   double xi = 0;
-  std::vector<double> spring, mass;
+  std::vector<double> spring, mass, gyro;  ///< as LineAttachment's (gyro: m entries, 0 where none)
 };
 std::vector<Site> sites_of(const LineSystem& sys) {
   const std::size_t m = static_cast<std::size_t>(sys.m);
-  std::vector<Site> out = {{0.0, sys.left_spring, std::vector<double>(m, 0.0)},
-                           {1.0, sys.right_spring, std::vector<double>(m, 0.0)}};
+  const std::vector<double> zero(m, 0.0);
+  std::vector<Site> out = {{0.0, sys.left_spring, zero, zero}, {1.0, sys.right_spring, zero, zero}};
   for (const LineAttachment& a : sys.attachments) {
     auto it = std::find_if(out.begin(), out.end(), [&](const Site& s) { return s.xi == a.xi; });
     if (it == out.end()) {
-      out.push_back({a.xi, a.spring, a.mass});
+      out.push_back({a.xi, a.spring, a.mass, a.gyro.empty() ? zero : a.gyro});
       continue;
     }
     for (std::size_t j = 0; j < m; ++j) {
       it->spring[j] += a.spring[j];  // inf + k = inf
       it->mass[j] += a.mass[j];
+      if (!a.gyro.empty()) it->gyro[j] += a.gyro[j];
     }
   }
   return out;
@@ -279,7 +281,8 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
         else S.E.hold(node, j);
         continue;
       }
-      const double t = k - lambda * site.mass[static_cast<std::size_t>(j)];
+      const auto jj = static_cast<std::size_t>(j);
+      const double t = k - lambda * site.mass[jj] + (lambda > 0 ? std::sqrt(lambda) * site.gyro[jj] : 0.0);
       if (t == 0.0) continue;
       const Eigen::RowVectorXd psi = S.Psi[node].row(j);
       S.C.noalias() += t * psi.transpose() * psi;
@@ -352,7 +355,7 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
     const int node = out.node_at(a.xi);
     for (int j = 0; j < m; ++j) {
       if (std::isinf(a.spring[j])) out.K.hold(node, j);
-      else out.K.add_diagonal(node, j, a.spring[j] - lambda * a.mass[j]);
+      else out.K.add_diagonal(node, j, a.term(static_cast<std::size_t>(j), lambda));
     }
   }
   return out;
@@ -448,7 +451,7 @@ int count_below(const LineSystem& sys, double lambda) {
     const int node = static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), a.xi) - nodes.begin());
     for (int j = 0; j < m; ++j) {
       if (std::isinf(a.spring[j])) K.hold(node, j);
-      else K.add_diagonal(node, j, a.spring[j] - lambda * a.mass[j]);
+      else K.add_diagonal(node, j, a.term(static_cast<std::size_t>(j), lambda));
     }
   }
   return j0 + K.inertia().negative;
@@ -586,7 +589,7 @@ LineSpectrum lowest_eigenvalues(const LineSystem& sys, int k, double lambda_hint
   const Rigid R = rigid_of(sys);
   // Lines whose held supports leave rigid motions free count through the rigid split below
   // half the scale (where near-rigid modes live and the anchored line is positive definite).
-  const bool split = R.info.available && R.info.held_rank < sys.m;
+  const bool split = R.info.available && R.info.held_rank < sys.m && sys.polynomial_in_lambda;
   auto N = [&](double lam) {
     if (split && lam < 0.5 * scale) {
       const Split sp = assemble_split(sys, R, line_nodes(sys, lam), lam);

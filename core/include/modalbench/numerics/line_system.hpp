@@ -17,6 +17,7 @@
 //   LineSpectrum s = lowest_eigenvalues(sys, 6, /*lambda_hint=*/1.0);
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -31,7 +32,15 @@ namespace modalbench {
 struct LineAttachment {
   double xi = 0;              ///< in (0, 1); an end (0 or 1) is allowed too and adds to its spring
   std::vector<double> spring; ///< per DOF, [0, inf]
-  std::vector<double> mass;   ///< per DOF, >= 0 (multiplies lambda = omega^2)
+  std::vector<double> mass;   ///< per DOF (multiplies lambda = omega^2); a spinning disc's whirl may make it < 0
+  /// Per DOF (empty: none): the dynamic stiffness also gains + sqrt(lambda) gyro[j] (a spinning
+  /// disc's gyroscopic moment in one whirl direction, s J_p Omega omega). The count stays exact: at
+  /// every zero crossing the term's quadratic form still decreases with lambda (one positive root).
+  std::vector<double> gyro = {};
+  /// spring[j] - lambda mass[j] + sqrt(lambda) gyro[j] (spring finite).
+  double term(std::size_t j, double lambda) const {
+    return spring[j] - lambda * mass[j] + (gyro.empty() || lambda <= 0 ? 0.0 : std::sqrt(lambda) * gyro[j]);
+  }
 };
 
 /// A piece of a stepped line from xi_from on (to the next piece or 1): its own state matrix and
@@ -63,6 +72,10 @@ struct LineSystem {
   /// Supports and masses between (or at) the ends; each is a node. A line with attachments is
   /// factored as it stands (the rigid-motion split of LineRigidity is for end-supported lines).
   std::vector<LineAttachment> attachments;
+  /// Whether A(lambda) and the attachments are polynomials in lambda (false: a whirl line's
+  /// sqrt(lambda) terms). The rigid-motion split divides A(lambda) - A(0) by lambda, which only a
+  /// polynomial allows down to 1e-250 of the scale; without it, the count runs on K(lambda) itself.
+  bool polynomial_in_lambda = true;
 };
 
 /// The assembled K(lambda) with its node positions.

@@ -117,6 +117,13 @@ struct TransientRun {
   std::vector<ByModes> by_modes;
 };
 
+/// A back-end's default solve of a rotor scene's Campbell diagram ([rotor]): the mesh refined to the
+/// scene's tolerance, the whole request.
+struct RotorRun {
+  std::string backend;
+  Result result;
+};
+
 struct SceneComparison {
   Scene scene;
   Reference reference;  ///< the scene's theory (exact), else the best Richardson limit: MAC pairing, tables
@@ -129,6 +136,10 @@ struct SceneComparison {
   /// request, and each back-end's default solve of it.
   std::optional<TransientRequest> transient;
   std::vector<TransientRun> transients;
+  /// Where the scene is a rotor (left out of `scene` too): its [rotor], and each back-end's default
+  /// solve of its Campbell diagram.
+  std::optional<Rotor> rotor;
+  std::vector<RotorRun> rotor_runs;
 };
 
 struct CompareOptions {
@@ -149,6 +160,10 @@ struct CompareOptions {
 /// Each back-end's default solve (refined to the tolerance, within twice the budget) of a scene
 /// with a time history (transient_runs.cpp); empty for a scene without one.
 std::vector<TransientRun> transient_runs(const Scene& scene, const Registry& registry, const CompareOptions& opt);
+
+/// Each back-end's default solve (refined to the tolerance, within twice the budget) of a rotor
+/// scene's Campbell diagram, where the back-end gives one (rotor_runs.cpp); empty for other scenes.
+std::vector<RotorRun> rotor_runs(const Scene& scene, const Registry& registry, const CompareOptions& opt);
 
 /// Runs the comparison on every scene. A back-end that throws or fails becomes a run marked
 /// failed with its message, never a crash.

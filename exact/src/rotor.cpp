@@ -1,0 +1,213 @@
+// The exact rotor (rotor.hpp): whirl frequencies per spin and critical speeds, solved for.
+//
+// Axisymmetric shaft: each whirl direction is a planar line (whirl_line.hpp) whose frequencies the
+// Wittrick-Williams count brackets exactly. The rotating frame of such a shaft sees the forward
+// whirl at omega_F - Omega and the backward at omega_B + Omega. An asymmetric uniform
+// Euler-Bernoulli shaft with the same end conditions in both planes (free, pinned, clamped or
+// guided: the two planes share their mode shapes) couples mode n of one plane with mode n of the
+// other only; in the rotating frame, with a = omega_zn^2 - Omega^2 and b = omega_yn^2 - Omega^2,
+//   (lambda^2 + a) (lambda^2 + b) + 4 Omega^2 lambda^2 = 0,
+// i.e. x = -lambda^2 solves x^2 - (a + b + 4 Omega^2) x + a b = 0.
+#include "rotor.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "beam_attachments.hpp"
+#include "modalbench/exact/beams.hpp"
+#include "modalbench/numerics/line_system.hpp"
+#include "whirl_line.hpp"
+
+namespace modalbench::exact::detail {
+
+namespace {
+
+bool axisymmetric(const Scene& s) {
+  for (const Segment& p : s.beam_pieces()) {
+    const Section sec = p.properties();
+    if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz)) return false;
+  }
+  return true;
+}
+
+/// Both ends free, pinned, clamped or guided (each spring 0 or held).
+bool classical_ends(const Scene& s) {
+  for (const Support* e : {&s.x0, &s.xL})
+    for (double k : {e->translational, e->rotational})
+      if (!(k == 0.0 || std::isinf(k))) return false;
+  return true;
+}
+
+struct Root {
+  double omega = 0, growth = 0;
+  Whirl whirl = Whirl::None;
+};
+
+/// The lowest k frequencies of one whirl line (rad/s).
+std::vector<double> branch(const Scene& s, const Whirling& w, int k, Summary& sum) {
+  const BendingLine line = whirl_line(s, w);
+  SliceStats st;
+  const LineSpectrum spec = lowest_eigenvalues(line.sys, k, 1.0 / line.lam_to_Omega2, &st);
+  sum.set_diagnostic("count_evaluations",
+                     std::max(0.0, sum.diagnostic("count_evaluations")) + static_cast<double>(st.count_evaluations));
+  std::vector<double> out;
+  for (double lam : spec.lambdas) out.push_back(std::sqrt(std::max(lam, 0.0)));
+  return out;
+}
+
+int count_below(const Scene& s, const Whirling& w, double omega) {
+  return modalbench::count_below(whirl_line(s, w).sys, omega * omega);
+}
+
+/// The k lowest whirl roots of an axisymmetric shaft at `spin`, in the scene's frame.
+std::vector<Root> axisymmetric_roots(const Scene& s, double spin, int k, Summary& sum) {
+  const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
+  std::vector<double> fw = branch(s, {+1, spin, false}, k, sum), bw = branch(s, {-1, spin, false}, k, sum);
+  std::vector<Root> out;
+  auto collect = [&] {
+    out.clear();
+    for (double b : bw) out.push_back({rotating ? b + spin : b, 0.0, Whirl::Backward});
+    for (double f : fw) {
+      const double d = rotating ? f - spin : f;
+      out.push_back({std::abs(d), 0.0, std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward});
+    }
+    std::sort(out.begin(), out.end(), [](const Root& a, const Root& b) { return a.omega < b.omega; });
+  };
+  collect();
+  if (rotating) {
+    // A forward frequency near the spin is a low one in the rotating frame: every forward one up to
+    // spin + (the k-th lowest so far) is taken.
+    const double bound = spin + out[static_cast<std::size_t>(k - 1)].omega;
+    const int n = count_below(s, {+1, spin, false}, bound);
+    if (n > static_cast<int>(fw.size())) {
+      fw = branch(s, {+1, spin, false}, n, sum);
+      collect();
+    }
+  }
+  out.resize(static_cast<std::size_t>(k));
+  return out;
+}
+
+/// The two roots of mode n of an asymmetric Euler-Bernoulli shaft in the rotating frame
+/// (omega_y, omega_z: the planes' frequencies of the mode).
+void asymmetric_mode_roots(double wy, double wz, double spin, std::vector<Root>& out) {
+  using C = std::complex<double>;
+  const double O2 = spin * spin, a = wz * wz - O2, b = wy * wy - O2;  // w in x-z (a), v in x-y (b)
+  const double p = a + b + 4 * O2;
+  const C disc = std::sqrt(C(p * p - 4 * a * b));
+  for (const C x : {(p + disc) / 2.0, (p - disc) / 2.0}) {
+    const C lambda = std::sqrt(-x);  // Re >= 0: the growing root of the pair +-lambda
+    Root r{std::abs(lambda.imag()), std::max(0.0, lambda.real()), spin > 0 ? Whirl::None : Whirl::Planar};
+    if (r.omega > 1e-13 * std::sqrt(std::abs(x)) && spin > 0) {
+      // v'' - 2 Omega w' + b v = 0: W / V = (lambda^2 + b) / (2 Omega lambda); the orbit turns in the
+      // spin's sense (v to w) where Im(V conj W) > 0, i.e. Im(W / V) < 0 (lambda with Im > 0).
+      const C l = C(lambda.real(), std::abs(lambda.imag()));
+      r.whirl = ((l * l + b) / (2.0 * spin * l)).imag() < 0 ? Whirl::Forward : Whirl::Backward;
+    }
+    out.push_back(r);
+  }
+}
+
+/// The k lowest roots of the asymmetric shaft (rotating frame) at `spin`.
+std::vector<Root> asymmetric_roots(const Scene& s, double spin, int k, Summary& sum) {
+  const EndSprings l{s.x0.translational, s.x0.rotational}, r{s.xL.translational, s.xL.rotational};
+  for (int kk = k;; kk *= 2) {
+    const Frequencies fz = beam_bending_frequencies(bending_xz(s), l, r, kk), fy = beam_bending_frequencies(bending_xy(s), l, r, kk);
+    sum.set_diagnostic("count_evaluations", std::max(0.0, sum.diagnostic("count_evaluations")) +
+                                                static_cast<double>(fz.count_evaluations + fy.count_evaluations));
+    std::vector<Root> out;
+    for (int n = 0; n < kk; ++n) asymmetric_mode_roots(fy.omega_rad_s[n], fz.omega_rad_s[n], spin, out);
+    std::sort(out.begin(), out.end(), [](const Root& a, const Root& b) { return a.omega < b.omega; });
+    // Mode n's roots are at least min(omega_n) - spin: beyond the k-th root, no later mode reaches.
+    const double next = std::min(fz.omega_rad_s.back(), fy.omega_rad_s.back());
+    if (next - spin > out[static_cast<std::size_t>(k - 1)].omega || kk >= (1 << 16)) {
+      out.resize(static_cast<std::size_t>(k));
+      return out;
+    }
+  }
+}
+
+/// Critical speeds of one whirl direction of an axisymmetric shaft: every one up to `top` and the
+/// next above (where the direction has one: a forward whirl's may be finitely many).
+std::vector<double> synchronous(const Scene& s, int sense, double top, double scale, Summary& sum) {
+  const Whirling w{sense, 0.0, true};
+  const int below = count_below(s, w, top);
+  const int far = count_below(s, w, 100.0 * std::max(top, scale));
+  const int n = std::min(far, below + 1);
+  return n > 0 ? branch(s, w, n, sum) : std::vector<double>{};
+}
+
+}  // namespace
+
+std::string rotor_refusal(const Scene& s) {
+  if (!bending_restrained({s.x0.translational, s.x0.rotational}, {s.xL.translational, s.xL.rotational},
+                          line_points(s, ModeFamily::BendingXZ)))
+    return "exact solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
+  if (axisymmetric(s)) return "";
+  if (s.theory == Theory::EulerBernoulli && !s.is_stepped() && s.masses.empty() && s.point_supports.empty() &&
+      classical_ends(s))
+    return "";
+  return "exact solves an asymmetric shaft (Iy != Iz) only as a uniform Euler-Bernoulli shaft without discs or "
+         "supports between the ends, each end free, pinned, clamped or guided (the planes then share their mode "
+         "shapes and each mode pair has a closed form); rfem models the others";
+}
+
+Campbell rotor_campbell(const Scene& s, Summary& sum) {
+  Campbell c;
+  const int k = s.request.modes;
+  const bool sym = axisymmetric(s);
+  c.frame = to_string(s.rotor->frame);
+  for (double spin : s.rotor->spin) {
+    CampbellPoint p;
+    p.spin_rad_s = spin;
+    for (const Root& r : sym ? axisymmetric_roots(s, spin, k, sum) : asymmetric_roots(s, spin, k, sum)) {
+      p.frequencies_rad_s.push_back(r.omega);
+      p.whirl.push_back(r.whirl);
+      p.growth_rates_1_s.push_back(r.growth);
+    }
+    if (std::any_of(p.growth_rates_1_s.begin(), p.growth_rates_1_s.end(), [](double g) { return g > 0; }))
+      c.unstable_spins.push_back(spin);
+    c.points.push_back(std::move(p));
+  }
+  const double top = s.rotor->spin.back();
+  if (sym) {
+    const double scale = branch(s, {+1, 0.0, false}, 1, sum)[0];
+    c.forward_criticals = synchronous(s, +1, top, scale, sum);
+    c.backward_criticals = synchronous(s, -1, top, scale, sum);
+    c.criticals_note = "synchronous whirl per direction (rotary inertias rho I -+ rho I_p, J_t -+ J_p), bisected on "
+                       "the Wittrick-Williams count: every critical speed up to the highest spin and the next above";
+    c.note = fmt::format("exact {} shaft: per whirl direction a planar line with rotary inertia rho I - s rho I_p "
+                         "Omega / omega (discs J_t - s J_p Omega / omega), its frequencies bracketed by the "
+                         "Wittrick-Williams count{}; undamped (material.loss_factor is not applied): growth rates 0",
+                         to_string(s.theory),
+                         s.rotor->frame == Rotor::Frame::Rotating ? "; rotating frame: omega_F - Omega, omega_B + Omega"
+                                                                  : "");
+  } else {
+    const EndSprings l{s.x0.translational, s.x0.rotational}, r{s.xL.translational, s.xL.rotational};
+    for (int kk = std::max(k, 4);; kk *= 2) {
+      const std::vector<double> z = beam_bending_frequencies(bending_xz(s), l, r, kk).omega_rad_s;
+      const std::vector<double> y = beam_bending_frequencies(bending_xy(s), l, r, kk).omega_rad_s;
+      std::vector<double> all = z;
+      all.insert(all.end(), y.begin(), y.end());
+      std::sort(all.begin(), all.end());
+      const auto above = std::upper_bound(all.begin(), all.end(), top);
+      // Complete up to the lower of the two planes' last frequencies (both above the top: the
+      // next critical above it is among them).
+      if (std::min(z.back(), y.back()) > top || kk >= (1 << 16)) {
+        c.forward_criticals.assign(all.begin(), above == all.end() ? above : above + 1);
+        break;
+      }
+    }
+    c.criticals_note = "forward: where a rotating-frame frequency is 0 (Omega = either plane's frequency of a mode, "
+                       "the ends of its unstable range); backward critical speeds of an asymmetric shaft are not given";
+    c.note = "exact asymmetric Euler-Bernoulli shaft in the rotating frame: per mode n, (lambda^2 + omega_zn^2 - "
+             "Omega^2)(lambda^2 + omega_yn^2 - Omega^2) + 4 Omega^2 lambda^2 = 0 (Coriolis and spin softening of the "
+             "shared mode shape); growth rate: Re lambda of the growing root of each pair";
+  }
+  return c;
+}
+
+}  // namespace modalbench::exact::detail

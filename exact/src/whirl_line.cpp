@@ -1,0 +1,72 @@
+// One whirl direction of an axisymmetric spinning shaft as a planar line (whirl_line.hpp).
+#include "whirl_line.hpp"
+
+#include <cmath>
+
+#include "beam_attachments.hpp"
+
+namespace modalbench::exact::detail {
+
+namespace {
+
+/// The state matrix and wavenumber bound of one piece `own` (polar rotary inertia rhoIp per
+/// length) in the units of the first piece `ref`, as BendingLine::set_piece with the rotary term
+/// rho I lambda replaced per `w`.
+void set_whirl_piece(const BeamBending& ref, const BeamBending& own, double rhoIp, const Whirling& w,
+                     std::function<Eigen::MatrixXd(double)>& state_matrix, std::function<double(double)>& wavenumber) {
+  const double L2 = ref.L * ref.L, c = ref.rhoA * L2 * L2 / ref.EI;
+  const double ss = std::isinf(own.kGA) ? 0.0 : ref.EI / (own.kGA * L2), inv_e = ref.EI / own.EI;
+  const double a = own.rhoA / ref.rhoA, rr = own.rhoI / (ref.rhoA * L2), rp = rhoIp / (ref.rhoA * L2);
+  const double sg = w.sense, spin = w.spin;
+  const bool sync = w.synchronous;
+  // rho I lambda - s rho I_p Omega sqrt(lambda) (or (rho I - s rho I_p) lambda), per rho A0 L^2.
+  auto rotary = [=](double lambda, double rI, double rIp) {
+    const double lam = std::max(lambda, 0.0);
+    return sync ? (rI - sg * rIp) * lam : rI * lam - sg * rIp * spin * std::sqrt(lam);
+  };
+  state_matrix = [=](double lambda) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4);
+    // y = [w, phi, Q, M]
+    A(0, 1) = 1.0; A(0, 2) = ss;
+    A(1, 3) = inv_e;
+    A(2, 0) = -a * lambda * c;
+    A(3, 1) = -rotary(lambda, rr, rp) * c; A(3, 2) = -1.0;
+    return A;
+  };
+  // The piece's own scaling: O2 = |lambda| rhoA L^4 / EI, shear s = EI / (kGA L^2), rotary
+  // R = |rotary| L^2 / EI; the wavenumbers' squares are bounded by O2 s + R + sqrt(O2) + sqrt(O2 s R).
+  const double s_own = std::isinf(own.kGA) ? 0.0 : own.EI / (own.kGA * L2), k_o2 = own.rhoA * L2 * L2 / own.EI,
+               k_r = L2 / own.EI, rI = own.rhoI;
+  wavenumber = [=](double lambda) {
+    const double O2 = std::abs(lambda) * k_o2, R = std::abs(rotary(std::abs(lambda), rI, rhoIp)) * k_r;
+    return 1.25 * std::sqrt(O2 * s_own + R + std::sqrt(O2) + std::sqrt(O2 * s_own * R));
+  };
+}
+
+}  // namespace
+
+BendingLine whirl_line(const Scene& s, const Whirling& w) {
+  const BeamBending b = bending_xz(s);
+  BendingLine line(b, {s.x0.translational, s.x0.rotational}, {s.xL.translational, s.xL.rotational},
+                   line_points(s, ModeFamily::BendingXZ));
+  line.sys.polynomial_in_lambda = w.synchronous;
+  const bool eb = s.theory == Theory::EulerBernoulli;
+  const std::vector<Segment> pieces = s.beam_pieces();
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const double rhoIp = eb ? 0.0 : pieces[i].material.rho * pieces[i].properties().Ip;
+    const BeamBending own = b.at(pieces[i].x_from);
+    if (i == 0) set_whirl_piece(b, own, rhoIp, w, line.sys.state_matrix, line.sys.max_wavenumber);
+    else set_whirl_piece(b, own, rhoIp, w, line.sys.steps[i - 1].state_matrix, line.sys.steps[i - 1].max_wavenumber);
+  }
+  // line_points puts the point supports first, then the masses in order (beam_attachments.cpp).
+  const double kr = b.L / b.EI;
+  for (std::size_t j = 0; j < s.masses.size(); ++j) {
+    LineAttachment& at = line.sys.attachments[s.point_supports.size() + j];
+    const PointMass& m = s.masses[j];
+    if (w.synchronous) at.mass[1] = (m.Jy - w.sense * m.Jx) * kr;
+    else at.gyro = {0.0, w.sense * m.Jx * w.spin * kr};
+  }
+  return line;
+}
+
+}  // namespace modalbench::exact::detail

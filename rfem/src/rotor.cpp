@@ -1,0 +1,173 @@
+// A spinning shaft on rfem's lateral model (rotor.hpp): the spin's matrices, what is refused, and the
+// Campbell diagram with its critical speeds.
+#include "rotor.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "modalbench/rfem/builders.hpp"
+#include "analysis_detail.hpp"
+
+namespace modalbench::rfem::detail {
+
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+SpMat over_z(const Model& model, const System& sys, const Triplets& t) {
+  SpMat A(model.body_dofs(), model.body_dofs());
+  A.setFromTriplets(t.begin(), t.end());
+  SpMat Az = SpMat(sys.T.transpose()) * A * sys.T;
+  Az.makeCompressed();
+  return Az;
+}
+
+/// The polar inertia of each rigid element's gyroscopic moment about y and z (its Jx).
+double polar(const RigidElement& r) { return r.inertia[0]; }
+
+/// Whether every rigid element has one diametral inertia (Jy = Jz).
+bool round_elements(const Model& model) {
+  return std::all_of(model.elements.begin(), model.elements.end(), [](const RigidElement& r) {
+    return std::abs(r.inertia[1] - r.inertia[2]) <= 1e-12 * std::max(r.inertia[1], r.inertia[2]);
+  });
+}
+
+/// The lowest critical speeds of an axisymmetric shaft per whirl direction: its x-z model with the
+/// tilt inertias J_t - s J_p (synchronous whirl), K x = Omega^2 (M - s G_p) x.
+std::pair<std::vector<double>, std::vector<double>> axisymmetric_criticals(const Scene& s, const Model& model, double top) {
+  Scene plane = s;
+  plane.physics = Physics::Bending;
+  plane.rotor.reset();
+  BeamOptions bo;
+  if (s.theory == Theory::EulerBernoulli) bo.rigid_shear = RigidShear::JointCoordinates;
+  const Model pm = build_beam(plane, static_cast<int>(model.elements.size()) - 1, bo);
+  const System ps = assemble(pm);
+  const int ry = pm.local_index(dofs::Ry);
+  Triplets t;
+  for (std::size_t e = 0; e < pm.elements.size(); ++e)
+    t.emplace_back(static_cast<int>(e) * pm.dofs_per_element() + ry, static_cast<int>(e) * pm.dofs_per_element() + ry,
+                   polar(model.elements[e]));
+  const SpMat Gp = over_z(pm, ps, t);
+  return {synchronous_speeds(ps.K, SpMat(ps.M - Gp), top), synchronous_speeds(ps.K, SpMat(ps.M + Gp), top)};
+}
+
+}  // namespace
+
+RotorMatrices rotor_matrices(const Model& model, const System& sys) {
+  const int na = model.dofs_per_element();
+  const int iv = model.local_index(dofs::Uy), iw = model.local_index(dofs::Uz);
+  const int iy = model.local_index(dofs::Ry), iz = model.local_index(dofs::Rz);
+  Triplets g, cr, kc;
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    const RigidElement& r = model.elements[e];
+    const int b = static_cast<int>(e) * na;
+    const double m = r.mass, jt = r.inertia[1], jp = polar(r);
+    g.emplace_back(b + iy, b + iz, jp);
+    g.emplace_back(b + iz, b + iy, -jp);
+    cr.emplace_back(b + iv, b + iw, -2 * m);
+    cr.emplace_back(b + iw, b + iv, 2 * m);
+    cr.emplace_back(b + iy, b + iz, -(2 * jt - jp));
+    cr.emplace_back(b + iz, b + iy, 2 * jt - jp);
+    for (int d : {iv, iw}) kc.emplace_back(b + d, b + d, m);
+    for (int d : {iy, iz}) kc.emplace_back(b + d, b + d, jt - jp);
+  }
+  return {over_z(model, sys, g), over_z(model, sys, cr), over_z(model, sys, kc)};
+}
+
+std::string rotor_scene_refusal(const Scene& s) {
+  int held = (s.x0.translational > 0) + (s.xL.translational > 0), turned = (s.x0.rotational > 0) + (s.xL.rotational > 0);
+  for (const PointSupport& p : s.point_supports) {
+    held += p.support.translational > 0;
+    turned += p.support.rotational > 0;
+  }
+  if (!(held >= 2 || (held >= 1 && turned >= 1)))
+    return "rfem solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
+  if (s.rotor->frame == Rotor::Frame::Rotating && s.theory == Theory::Timoshenko)
+    for (const Segment& p : s.beam_pieces()) {
+      const Section sec = p.properties();
+      if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz))
+        return "rfem's rotating frame takes one diametral inertia per rigid element: an asymmetric section's rotary "
+               "inertias (Timoshenko theory) differ; use Euler-Bernoulli theory for an asymmetric shaft";
+    }
+  return "";
+}
+
+std::string campbell_refusal(const Scene& s, const Model& model, const System& sys) {
+  if (model.active != dofs::kLateral) return "rfem's Campbell diagram needs the lateral model (physics = \"lateral\")";
+  if (sys.m() > 0)
+    return "rfem's Campbell diagram needs a model without rigid-link multipliers (Euler-Bernoulli: joint "
+           "coordinates, which rotor scenes use)";
+  if (free_rigid_modes(model, sys).Z.cols() > 0)
+    return "rfem solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
+  if (s.rotor->frame == Rotor::Frame::Rotating && !round_elements(model))
+    return "rfem's rotating frame takes one diametral inertia per rigid element: an asymmetric section's rotary "
+           "inertias (Timoshenko theory) differ; use Euler-Bernoulli theory for an asymmetric shaft";
+  return "";
+}
+
+Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, Summary& sum) {
+  const RotorMatrices rm = rotor_matrices(model, sys);
+  const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
+  const int k = s.request.modes;
+  Campbell c;
+  c.frame = to_string(s.rotor->frame);
+  c.max_backward_error = 0;
+  Eigen::SparseLU<SpMat> fixed;
+  if (!rotating) {
+    fixed.compute(sys.K);
+    if (fixed.info() != Eigen::Success) throw std::runtime_error("rfem rotor: the stiffness could not be factored");
+  }
+  long short_spins = 0;
+  for (double spin : s.rotor->spin) {
+    const SpMat K = rotating ? SpMat(sys.K - spin * spin * rm.Kc) : sys.K;
+    const SpMat C = spin * (rotating ? rm.Cr : rm.G);
+    Eigen::SparseLU<SpMat> own;
+    if (rotating) {
+      own.compute(K);
+      if (own.info() != Eigen::Success)
+        throw std::runtime_error(fmt::format("rfem rotor: K - Omega^2 K_c is singular at spin {:g} rad/s (a critical "
+                                             "speed of the rotating frame): move the spin off it", spin));
+    }
+    const WhirlRoots w = whirl_roots(model, sys, K, rotating ? own : fixed, C, k);
+    CampbellPoint p;
+    p.spin_rad_s = spin;
+    p.frequencies_rad_s = w.omega;
+    p.whirl = w.whirl;
+    p.growth_rates_1_s = w.growth;
+    for (double be : w.backward_error) c.max_backward_error = std::max(c.max_backward_error, be);
+    if (static_cast<int>(w.omega.size()) < k) ++short_spins;
+    if (std::any_of(w.growth.begin(), w.growth.end(), [](double g) { return g > 0; })) c.unstable_spins.push_back(spin);
+    c.points.push_back(std::move(p));
+  }
+  const double top = s.rotor->spin.back();
+  if (round_elements(model) && !rotating) {
+    std::tie(c.forward_criticals, c.backward_criticals) = axisymmetric_criticals(s, model, top);
+    c.criticals_note = "synchronous whirl per direction on the x-z model with tilt inertias J_t -+ J_p: K x = Omega^2 "
+                       "(M -+ G_p) x, every critical speed up to the highest spin and the next above";
+  } else if (rotating) {
+    c.forward_criticals = synchronous_speeds(sys.K, rm.Kc, top);
+    c.criticals_note = "forward: where a rotating-frame frequency is 0, K x = Omega^2 K_c x (for an asymmetric shaft "
+                       "the ends of its unstable ranges); backward critical speeds are not given in the rotating frame";
+  }
+  c.note = fmt::format("rfem lateral model, {} frame: {}; the quadratic eigenproblem by shift-invert Arnoldi "
+                       "(Spectra) on its companion form, {}; each pair +-lambda once, growth rate |Re lambda| where it "
+                       "exceeds max(1e-8, 10 sqrt(backward error)) |lambda|; whirl from the orbits of v, w at the rigid "
+                       "elements; undamped (material.loss_factor is not applied)",
+                       c.frame,
+                       rotating ? "Coriolis -+2 m Omega, (2 J_t - J_p) Omega and spin softening m Omega^2, (J_t - J_p) "
+                                  "Omega^2 per rigid element"
+                                : "gyroscopic J_p Omega per rigid element",
+                       rotating ? "K - Omega^2 K_c factored per spin" : "K factored once for every spin");
+  if (short_spins > 0)
+    sum.raise(Status::NumericalIssue, fmt::format("rfem rotor: fewer than {} whirl roots found at {} spin(s)", k, short_spins));
+  if (!(c.max_backward_error <= 1e-8))
+    sum.raise(Status::NumericalIssue,
+              fmt::format("rfem rotor: a whirl eigenpair's backward error {:.2g} exceeds 1e-8", c.max_backward_error));
+  sum.note_backward_error(c.max_backward_error);
+  return c;
+}
+
+}  // namespace modalbench::rfem::detail
