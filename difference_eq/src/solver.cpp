@@ -8,6 +8,7 @@
 #include "modalbench/difference_eq/difference_eq.hpp"
 #include "modalbench/timer.hpp"
 #include "attachments.hpp"
+#include "rotor.hpp"
 #include "modalbench/equilibrium.hpp"
 
 namespace modalbench::difference_eq {
@@ -147,8 +148,11 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
   // The model restrictions (Euler-Bernoulli, bending in x-z) are stated by do_solve in the
   // result's warnings; here only what is not computed at all.
   c.reason = "FRF is not implemented by difference_eq (modes and statics only)";
-  if (s.rotor)
-    c.reason += "; no rotor model yet (the appendix's A3 rotating-frame matrices): no Campbell diagram";
+  if (s.rotor) {
+    const std::string why = rotor_refusal(s);
+    c.campbell = why.empty();
+    if (!why.empty()) c.reason += "; " + why;
+  }
   if (!s.point_supports.empty() && rigid_body_modes(beam_of(s, 1)) > 0) {
     c.statics = false;
     c.reason += "; statics with supports between the ends need end supports that hold the beam by themselves "
@@ -381,6 +385,17 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
     }
     if (s.request.shapes && !sp.omega_rad_s.empty()) res.mode_shapes = shapes(s, beam, mass, sp.omega_rad_s, sp.rigid);
     sum.timings_s.modes += timer.lap();
+  }
+
+  // A rotor's whirl (the appendix's A3 chain, per mode).
+  if (s.rotor) {
+    try {
+      res.campbell = rotor_campbell(s, R, mass, sum);
+      sum.method += "; Campbell: " + res.campbell.note;
+    } catch (const std::invalid_argument& e) {
+      sum.raise(Status::Unsupported, std::string("difference_eq: ") + e.what());
+    }
+    sum.timings_s.campbell += timer.lap();
   }
 
   // Statics at the probes.

@@ -14,11 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 
 #include "beam_attachments.hpp"
 #include "modalbench/exact/beams.hpp"
 #include "modalbench/numerics/line_system.hpp"
+#include "modalbench/whirl.hpp"
 #include "whirl_line.hpp"
 
 namespace modalbench::exact::detail {
@@ -91,26 +91,6 @@ std::vector<Root> axisymmetric_roots(const Scene& s, double spin, int k, Summary
   return out;
 }
 
-/// The two roots of mode n of an asymmetric Euler-Bernoulli shaft in the rotating frame
-/// (omega_y, omega_z: the planes' frequencies of the mode).
-void asymmetric_mode_roots(double wy, double wz, double spin, std::vector<Root>& out) {
-  using C = std::complex<double>;
-  const double O2 = spin * spin, a = wz * wz - O2, b = wy * wy - O2;  // w in x-z (a), v in x-y (b)
-  const double p = a + b + 4 * O2;
-  const C disc = std::sqrt(C(p * p - 4 * a * b));
-  for (const C x : {(p + disc) / 2.0, (p - disc) / 2.0}) {
-    const C lambda = std::sqrt(-x);  // Re >= 0: the growing root of the pair +-lambda
-    Root r{std::abs(lambda.imag()), std::max(0.0, lambda.real()), spin > 0 ? Whirl::None : Whirl::Planar};
-    if (r.omega > 1e-13 * std::sqrt(std::abs(x)) && spin > 0) {
-      // v'' - 2 Omega w' + b v = 0: W / V = (lambda^2 + b) / (2 Omega lambda); the orbit turns in the
-      // spin's sense (v to w) where Im(V conj W) > 0, i.e. Im(W / V) < 0 (lambda with Im > 0).
-      const C l = C(lambda.real(), std::abs(lambda.imag()));
-      r.whirl = ((l * l + b) / (2.0 * spin * l)).imag() < 0 ? Whirl::Forward : Whirl::Backward;
-    }
-    out.push_back(r);
-  }
-}
-
 /// The k lowest roots of the asymmetric shaft (rotating frame) at `spin`.
 std::vector<Root> asymmetric_roots(const Scene& s, double spin, int k, Summary& sum) {
   const EndSprings l{s.x0.translational, s.x0.rotational}, r{s.xL.translational, s.xL.rotational};
@@ -119,7 +99,9 @@ std::vector<Root> asymmetric_roots(const Scene& s, double spin, int k, Summary& 
     sum.set_diagnostic("count_evaluations", std::max(0.0, sum.diagnostic("count_evaluations")) +
                                                 static_cast<double>(fz.count_evaluations + fy.count_evaluations));
     std::vector<Root> out;
-    for (int n = 0; n < kk; ++n) asymmetric_mode_roots(fy.omega_rad_s[n], fz.omega_rad_s[n], spin, out);
+    for (int n = 0; n < kk; ++n)
+      for (const WhirlRoot& w : rotating_frame_roots(fy.omega_rad_s[n], fz.omega_rad_s[n], spin))
+        out.push_back({w.omega, w.growth, w.whirl});
     std::sort(out.begin(), out.end(), [](const Root& a, const Root& b) { return a.omega < b.omega; });
     // Mode n's roots are at least min(omega_n) - spin: beyond the k-th root, no later mode reaches.
     const double next = std::min(fz.omega_rad_s.back(), fy.omega_rad_s.back());

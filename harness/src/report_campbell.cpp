@@ -112,8 +112,8 @@ void write_campbell(Doc& doc, const SceneComparison& c, Context& ctx, const std:
                     err_str(x.summary.error_estimate.campbell),
                     exact && &r != exact ? err_str(vs_exact(cb, exact->result.campbell)) : "—",
                     err_str(cb.max_backward_error), secs_str(x.summary.total_time_s)});
-    notes.push_back(fmt::format("{}: {}{}", r.backend, cb.empty() ? md_cell(x.summary.message) : md_cell(cb.note),
-                                cb.criticals_note.empty() ? "" : "; critical speeds: " + md_cell(cb.criticals_note)));
+    notes.push_back(fmt::format("{}: {}{}", r.backend, cb.empty() ? x.summary.message : cb.note,
+                                cb.criticals_note.empty() ? "" : "; critical speeds: " + cb.criticals_note));
   }
   doc.table({"back-end", "mesh", "status", "forward critical speeds [rad/s]", "backward critical speeds [rad/s]",
              "unstable at spins [rad/s]", "estimate", "vs exact", "backward error", "time [s]"},

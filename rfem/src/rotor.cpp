@@ -153,8 +153,8 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
                        "the ends of its unstable ranges); backward critical speeds are not given in the rotating frame";
   }
   c.note = fmt::format("rfem lateral model, {} frame: {}; the quadratic eigenproblem by shift-invert Arnoldi "
-                       "(Spectra) on its companion form, {}; each pair +-lambda once, growth rate |Re lambda| where it "
-                       "exceeds max(1e-8, 10 sqrt(backward error)) |lambda|; whirl from the orbits of v, w at the rigid "
+                       "(Spectra) on its companion form, {}; each pair +-lambda once, growth rate abs(Re lambda) where it "
+                       "exceeds max(1e-8, 10 sqrt(backward error)) abs(lambda); whirl from the orbits of v, w at the rigid "
                        "elements; undamped (material.loss_factor is not applied)",
                        c.frame,
                        rotating ? "Coriolis -+2 m Omega, (2 J_t - J_p) Omega and spin softening m Omega^2, (J_t - J_p) "

@@ -9,7 +9,8 @@
 //     (a real root) for Omega between w_1 and w_2;
 //   - a symmetric shaft seen from its rotating frame: the stationary frame's forward whirl at
 //     w_F - Omega, the backward at w_B + Omega (a missing factor 2 in the Coriolis terms breaks it).
-// exact is held to 1e-9 (its roots are bracketed to 1e-13); rfem to its own error estimate.
+// exact is held to 1e-9 (its roots are bracketed to 1e-13); rfem and difference_eq (the appendix's
+// A3 chain, Euler-Bernoulli) to their own error estimates.
 #define BOOST_TEST_MODULE rotor
 #include <boost/test/unit_test.hpp>
 
@@ -106,7 +107,7 @@ BOOST_AUTO_TEST_CASE(a_symmetric_shaft_seen_from_its_own_frame_whirls_at_the_sta
   st.rotor->spin = {0.0, 700.0, 2500.0};
   Scene ro = st;
   ro.rotor->frame = Rotor::Frame::Rotating;
-  for (const std::string backend : {"exact", "rfem"}) {
+  for (const std::string backend : {"exact", "rfem", "difference_eq"}) {
     const Solver& b = registry().get(backend);
     const Discretization mesh = backend == "exact" ? Discretization{} : Discretization{{64}};
     Options o;
@@ -188,7 +189,7 @@ BOOST_AUTO_TEST_CASE(an_asymmetric_shaft_in_its_rotating_frame_is_unstable_betwe
   const double E = 2.1e11, rho = 7850.0, L = 1.2, b = 0.04, h = 0.05, A = b * h;
   const double Iy = b * h * h * h / 12, Iz = h * b * b * b / 12;
   auto plane = [&](int n, double I) { return std::pow(n * kPi / L, 2) * std::sqrt(E * I / (rho * A)); };
-  for (const std::string backend : {"exact", "rfem"}) {
+  for (const std::string backend : {"exact", "rfem", "difference_eq"}) {
     const Solver& bk = registry().get(backend);
     const Result r = bk.solve(s, bk.default_mesh(s), Options{});
     BOOST_TEST_INFO(backend << ": " << r.summary.message);
@@ -260,8 +261,10 @@ modes = 2
   // element), naming why; exact refuses an asymmetric Timoshenko shaft too.
   const Scene s = parse_scene(head + "[rotor]\nspin = [0.0, 100.0]\nframe = \"rotating\"\n", "r.toml");
   // What a back-end cannot give is said: refused outright, or the rest computed and a warning
-  // naming the Campbell diagram and why.
-  for (const std::string backend : {"exact", "rfem", "dtfm", "difference_eq"}) {
+  // naming the Campbell diagram and why. (difference_eq solves its own model, the Euler-Bernoulli
+  // chain, and says so; with a lumped mass it refuses the rotating frame, whose A3 matrices are the
+  // consistent mass's.)
+  for (const std::string backend : {"exact", "rfem", "dtfm"}) {
     const Solver& b = registry().get(backend);
     const Result r = b.solve(s, b.default_mesh(s), Options{});
     BOOST_TEST_INFO(backend << ": " << r.summary.message);
@@ -271,4 +274,13 @@ modes = 2
     });
     BOOST_TEST((r.summary.status == Status::Unsupported || said));
   }
+  const Solver& de = registry().get("difference_eq");
+  const Result chain = de.solve(s, de.default_mesh(s), Options{});
+  BOOST_TEST(!chain.campbell.empty());
+  BOOST_TEST(!chain.summary.converges_to_scene_theory);
+  Options lumped;
+  lumped.mass = MassModel::Lumped;
+  const Result l = de.solve(s, de.default_mesh(s), lumped);
+  BOOST_TEST(l.campbell.empty());
+  BOOST_TEST((l.summary.status == Status::Unsupported), l.summary.message);
 }

@@ -1,0 +1,57 @@
+// A Campbell sweep on rfem (issue "spinning shafts": 61 speeds of a 2000-DOF rotor in about one
+// factorization's cost): Friswell's two-disc rotor (scenes/rotor_friswell_two_discs.toml) on meshes
+// of about 500 to 4000 lateral coordinates, 6 whirl frequencies at 61 spins from 0 to 4000 rev/min,
+// stationary frame (K factored once) and rotating frame (K - Omega^2 K_c factored per spin); beside
+// it the time of one sparse LU of K alone and of the shaft's 6 modes at rest.
+//
+// Sample run:
+//   build/benchmarks/rfem/bench_rfem_rotor
+#include <Eigen/SparseLU>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <string>
+
+#include "modalbench/rfem/builders.hpp"
+#include "modalbench/rfem/rfem.hpp"
+#include "modalbench/rfem/system.hpp"
+
+using namespace modalbench;
+
+namespace {
+
+double seconds(const std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main() {
+  const rfem::RfemSolver solver;
+  Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_friswell_two_discs.toml");
+  s.rotor->spin.clear();
+  for (int i = 0; i <= 60; ++i) s.rotor->spin.push_back(4000.0 * 3.141592653589793 / 30.0 * i / 60.0);
+  fmt::print("{:>9} {:>12} {:>12} {:>12} {:>14} {:>14} {:>8}\n", "segments", "coordinates", "LU of K [s]", "modes [s]",
+             "61 spins [s]", "per spin [s]", "status");
+  for (const int n : {120, 240, 498, 996}) {
+    rfem::BeamOptions bo;
+    bo.rigid_shear = rfem::RigidShear::JointCoordinates;
+    const rfem::System sys = rfem::assemble(rfem::build_beam(s, n, bo));
+    auto t0 = std::chrono::steady_clock::now();
+    Eigen::SparseLU<rfem::SpMat> lu(sys.K);
+    const double t_lu = seconds(t0);
+    Options o;
+    o.estimate_error = false;
+    Scene rest = s;
+    rest.rotor.reset();
+    const Result m = solver.solve(rest, Discretization{{n}}, o);
+    const Result r = solver.solve(s, Discretization{{n}}, o);
+    fmt::print("{:>9} {:>12} {:>12.3g} {:>12.3g} {:>14.3g} {:>14.3g} {:>8}\n", n, sys.n(), t_lu, m.summary.timings_s.modes,
+               r.summary.timings_s.campbell, r.summary.timings_s.campbell / 61, to_string(r.summary.status));
+  }
+  s.rotor->frame = Rotor::Frame::Rotating;
+  Options o;
+  o.estimate_error = false;
+  const Result r = solver.solve(s, Discretization{{498}}, o);
+  fmt::print("rotating frame, 498 segments: 61 spins {:.3g} s ({})\n", r.summary.timings_s.campbell, to_string(r.summary.status));
+}

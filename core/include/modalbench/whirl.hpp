@@ -1,0 +1,29 @@
+#pragma once
+// Whirl of a shaft mode shared by both bending planes, for back-ends whose spin terms reduce to the
+// translational mass's Coriolis and spin softening (Euler-Bernoulli sections without discs, the
+// appendix's A3: the rotating frame's 2 L_e and -K_e are the translational mass matrix, turned).
+// In the rotating frame, with the planes' frequencies of the mode omega_v (x-y) and omega_w (x-z):
+//   (lambda^2 + omega_v^2 - Omega^2)(lambda^2 + omega_w^2 - Omega^2) + 4 Omega^2 lambda^2 = 0.
+// Seen from the ground such a mode does not change with the spin (no gyroscopic moment).
+#include <array>
+#include <vector>
+
+#include "modalbench/result.hpp"
+
+namespace modalbench {
+
+/// One root pair +-lambda: frequency |Im lambda| (rad/s), growth rate Re of the growing root (1/s),
+/// and its orbit's sense.
+struct WhirlRoot {
+  double omega = 0, growth = 0;
+  Whirl whirl = Whirl::None;
+};
+
+/// The mode's two roots in the rotating frame at spin Omega (at spin 0: two planar orbits).
+std::array<WhirlRoot, 2> rotating_frame_roots(double omega_v, double omega_w, double spin);
+
+/// A Campbell point from the roots of several modes: the lowest k, ascending, with the point's
+/// growth rates; `unstable` set where one grows.
+CampbellPoint campbell_point(double spin, std::vector<WhirlRoot> roots, int k, bool& unstable);
+
+}  // namespace modalbench

@@ -1,0 +1,46 @@
+// Whirl of a mode shared by both bending planes (whirl.hpp).
+#include "modalbench/whirl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+namespace modalbench {
+
+std::array<WhirlRoot, 2> rotating_frame_roots(double omega_v, double omega_w, double spin) {
+  using C = std::complex<double>;
+  const double O2 = spin * spin, a = omega_w * omega_w - O2, b = omega_v * omega_v - O2;
+  const double p = a + b + 4 * O2;
+  const C disc = std::sqrt(C(p * p - 4 * a * b));
+  std::array<WhirlRoot, 2> out;
+  int i = 0;
+  for (const C x : {(p + disc) / 2.0, (p - disc) / 2.0}) {  // x = -lambda^2
+    const C lambda = std::sqrt(-x);                          // Re >= 0: the growing root of +-lambda
+    WhirlRoot r{std::abs(lambda.imag()), std::max(0.0, lambda.real()), spin > 0 ? Whirl::None : Whirl::Planar};
+    if (r.omega > 1e-13 * std::sqrt(std::abs(x)) && spin > 0) {
+      // v'' - 2 Omega w' + b v = 0: W / V = (lambda^2 + b) / (2 Omega lambda); the orbit turns in the
+      // spin's sense (v to w) where Im(V conj W) > 0, i.e. Im(W / V) < 0 (lambda with Im > 0).
+      const C l(lambda.real(), std::abs(lambda.imag()));
+      r.whirl = ((l * l + b) / (2.0 * spin * l)).imag() < 0 ? Whirl::Forward : Whirl::Backward;
+    }
+    out[static_cast<std::size_t>(i++)] = r;
+  }
+  return out;
+}
+
+CampbellPoint campbell_point(double spin, std::vector<WhirlRoot> roots, int k, bool& unstable) {
+  std::stable_sort(roots.begin(), roots.end(), [](const WhirlRoot& a, const WhirlRoot& b) { return a.omega < b.omega; });
+  if (static_cast<int>(roots.size()) > k) roots.resize(static_cast<std::size_t>(k));
+  CampbellPoint p;
+  p.spin_rad_s = spin;
+  unstable = false;
+  for (const WhirlRoot& r : roots) {
+    p.frequencies_rad_s.push_back(r.omega);
+    p.whirl.push_back(r.whirl);
+    p.growth_rates_1_s.push_back(r.growth);
+    unstable = unstable || r.growth > 0;
+  }
+  return p;
+}
+
+}  // namespace modalbench
