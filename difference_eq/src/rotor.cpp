@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "modalbench/difference_eq/difference_eq.hpp"
 #include "modalbench/whirl.hpp"
@@ -88,9 +87,6 @@ std::string rotor_refusal(const Scene& s) {
 
 Campbell rotor_campbell(const Scene& s, long R, MassModel mass, Summary& sum) {
   const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
-  if (rotating && mass != MassModel::Consistent)
-    throw std::invalid_argument("the rotating frame's matrices (the appendix's A3) are the consistent mass's: the "
-                                "Campbell diagram needs --mass consistent");
   const int k = s.request.modes;
   Campbell c;
   c.frame = to_string(s.rotor->frame);

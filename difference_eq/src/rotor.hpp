@@ -18,9 +18,8 @@ namespace modalbench::difference_eq {
 /// Why the chain gives no Campbell diagram for this rotor scene ("" where it does).
 std::string rotor_refusal(const Scene& s);
 
-/// The Campbell diagram and critical speeds of scene.rotor on R elements (rotor_refusal empty).
-/// Throws std::invalid_argument for a lumped mass in the rotating frame (A3 is the consistent
-/// mass's).
+/// The Campbell diagram and critical speeds of scene.rotor on R elements (rotor_refusal empty; in
+/// the rotating frame the mass consistent: A3's matrices are the consistent mass's).
 Campbell rotor_campbell(const Scene& s, long R, MassModel mass, Summary& sum);
 
 }  // namespace modalbench::difference_eq

@@ -388,12 +388,15 @@ void DifferenceEqSolver::do_solve(const Scene& s, const Discretization& mesh, co
   }
 
   // A rotor's whirl (the appendix's A3 chain, per mode).
-  if (s.rotor) {
+  if (s.rotor && s.rotor->frame == Rotor::Frame::Rotating && mass != MassModel::Consistent) {
+    sum.raise(Status::Unsupported, "difference_eq: the rotating frame's matrices (the appendix's A3) are the "
+                                   "consistent mass's: its Campbell diagram needs --mass consistent");
+  } else if (s.rotor) {
     try {
       res.campbell = rotor_campbell(s, R, mass, sum);
       sum.method += "; Campbell: " + res.campbell.note;
-    } catch (const std::invalid_argument& e) {
-      sum.raise(Status::Unsupported, std::string("difference_eq: ") + e.what());
+    } catch (const std::exception& e) {
+      sum.raise(Status::NumericalIssue, std::string("difference_eq: Campbell diagram: ") + e.what());
     }
     sum.timings_s.campbell += timer.lap();
   }

@@ -438,10 +438,6 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
   ModeList list;
   if (s.is_beam()) solve_beam(s, list, r, timer);
   else solve_plate(s, o, list, r, timer);
-  if (s.rotor) {
-    r.campbell = detail::rotor_campbell(s, r.summary);
-    r.summary.timings_s.campbell += timer.lap();
-  }
   auto& modes = list.modes;
   std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.omega < y.omega; });
   if (static_cast<int>(modes.size()) > s.request.modes) modes.resize(s.request.modes);
@@ -455,6 +451,15 @@ void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Opt
     else if (!plate_shapes(s, modes, r.mode_shapes))
       r.summary.warnings.push_back("mode shapes are not computed for the exact Mindlin plate");
     r.summary.timings_s.modes += shapes_timer.lap();
+  }
+  if (s.rotor) {
+    // Its failure is the Campbell diagram's alone: the modes and statics stand.
+    try {
+      r.campbell = detail::rotor_campbell(s, r.summary);
+    } catch (const std::runtime_error& e) {
+      r.summary.raise(Status::NumericalIssue, std::string("exact: Campbell diagram: ") + e.what());
+    }
+    r.summary.timings_s.campbell += timer.lap();
   }
 }
 

@@ -402,8 +402,13 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
     if (const std::string why = detail::campbell_refusal(s, model, sys); !why.empty()) {
       sum.raise(Status::Unsupported, why);
     } else {
-      r.campbell = detail::rotor_campbell(s, model, sys, sum);
-      method += "; Campbell: " + r.campbell.note;
+      // Its failure is the Campbell diagram's alone: the modes and statics stand.
+      try {
+        r.campbell = detail::rotor_campbell(s, model, sys, sum);
+        method += "; Campbell: " + r.campbell.note;
+      } catch (const std::runtime_error& e) {
+        sum.raise(Status::NumericalIssue, std::string("rfem: Campbell diagram: ") + e.what());
+      }
     }
     sum.timings_s.campbell += since(t0);
   }

@@ -284,3 +284,27 @@ modes = 2
   BOOST_TEST(l.campbell.empty());
   BOOST_TEST((l.summary.status == Status::Unsupported), l.summary.message);
 }
+
+BOOST_AUTO_TEST_CASE(rfem_and_exact_agree_on_friswell_s_two_disc_rotor_within_rfem_s_estimate) {
+  // Friswell et al. Example 5.9.1 (scenes/rotor_friswell_two_discs.toml): no closed form; exact
+  // (per whirl direction, counted) is the second method for rfem, root by root, sense by sense,
+  // critical speed by critical speed, across 0 to 4000 rev/min.
+  const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_friswell_two_discs.toml");
+  const Result e = solve("exact", s), r = solve("rfem", s);
+  const double tol = allowed("rfem", r);
+  BOOST_TEST(tol <= s.request.tolerance);
+  for (std::size_t p = 0; p < s.rotor->spin.size(); ++p) {
+    const CampbellPoint &a = r.campbell.points[p], &b = e.campbell.points[p];
+    BOOST_TEST_REQUIRE(a.frequencies_rad_s.size() == b.frequencies_rad_s.size());
+    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
+      BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i);
+      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) <= tol * (b.frequencies_rad_s[i] + a.spin_rad_s));
+      if (a.spin_rad_s > 0) BOOST_TEST((a.whirl[i] == b.whirl[i]));
+    }
+  }
+  for (const auto& [x, y] : {std::pair{&r.campbell.forward_criticals, &e.campbell.forward_criticals},
+                             std::pair{&r.campbell.backward_criticals, &e.campbell.backward_criticals}}) {
+    BOOST_TEST_REQUIRE(x->size() == y->size());
+    for (std::size_t i = 0; i < x->size(); ++i) BOOST_TEST(rel((*x)[i], (*y)[i]) <= tol);
+  }
+}
