@@ -120,7 +120,8 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
     fixed.compute(sys.K);
     if (fixed.info() != Eigen::Success) throw std::runtime_error("rfem rotor: the stiffness could not be factored");
   }
-  long short_spins = 0;
+  long short_spins = 0, iterations = 0;
+  Eigen::VectorXd start;  // the previous spin's roots: a warm start along the sweep
   for (double spin : s.rotor->spin) {
     const SpMat K = rotating ? SpMat(sys.K - spin * spin * rm.Kc) : sys.K;
     const SpMat C = spin * (rotating ? rm.Cr : rm.G);
@@ -131,7 +132,9 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
         throw std::runtime_error(fmt::format("rfem rotor: K - Omega^2 K_c is singular at spin {:g} rad/s (a critical "
                                              "speed of the rotating frame): move the spin off it", spin));
     }
-    const WhirlRoots w = whirl_roots(model, sys, K, rotating ? own : fixed, C, k);
+    WhirlRoots w = whirl_roots(model, sys, K, rotating ? own : fixed, C, k, start);
+    start = std::move(w.start);
+    iterations += w.iterations;
     CampbellPoint p;
     p.spin_rad_s = spin;
     p.frequencies_rad_s = w.omega;
@@ -161,6 +164,7 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
                                   "Omega^2 per rigid element"
                                 : "gyroscopic J_p Omega per rigid element",
                        rotating ? "K - Omega^2 K_c factored per spin" : "K factored once for every spin");
+  sum.set_diagnostic("campbell_arnoldi_restarts", static_cast<double>(iterations));
   if (short_spins > 0)
     sum.raise(Status::NumericalIssue, fmt::format("rfem rotor: fewer than {} whirl roots found at {} spin(s)", k, short_spins));
   if (!(c.max_backward_error <= 1e-8))

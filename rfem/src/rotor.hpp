@@ -36,13 +36,18 @@ std::string campbell_refusal(const Scene& s, const Model& model, const System& s
 struct WhirlRoots {
   std::vector<double> omega, growth, backward_error;
   std::vector<Whirl> whirl;
+  /// The companion-form vectors [x; lambda x] of the roots, summed (real and imaginary parts): the
+  /// next spin's Arnoldi starts from it (a warm start along a sweep); restarts taken.
+  Eigen::VectorXd start;
+  long iterations = 0;
 };
 /// M z'' + C z' + K z = 0 by shift-invert Arnoldi on its first companion form (Spectra), one sparse
 /// LU of K per call; the senses from the orbits of v and w at the rigid elements (a repeated root's
 /// basis turned to diagonalize the orbit-sense form).
-/// `lu` factors K (the stationary frame's serves every spin).
+/// `lu` factors K (the stationary frame's serves every spin); `start` (2 n entries, or empty) is
+/// the Arnoldi start vector (a previous spin's WhirlRoots::start).
 WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, const Eigen::SparseLU<SpMat>& lu,
-                       const SpMat& C, int k);
+                       const SpMat& C, int k, const Eigen::VectorXd& start = {});
 
 /// The positive Omega with K x = Omega^2 B x (K positive definite, B symmetric, perhaps indefinite),
 /// ascending: every one up to `top` and the next above, where there is one.

@@ -47,12 +47,13 @@ class CompanionOp {
 
 struct Eigenpairs {
   Eigen::VectorXcd lambda;
-  Eigen::MatrixXcd X;  ///< n x count: the x halves
+  Eigen::MatrixXcd V;  ///< 2n x count: the companion form's vectors [x; lambda x]
+  long iterations = 0;
 };
 
 /// The `nev` eigenvalues of the pencil nearest 0: Arnoldi, or on a small model the whole dense
 /// spectrum of the operator.
-Eigenpairs nearest_zero(const CompanionOp& op, Eigen::Index n, Eigen::Index nev) {
+Eigenpairs nearest_zero(const CompanionOp& op, Eigen::Index n, Eigen::Index nev, const Eigen::VectorXd& start) {
   Eigenpairs out;
   const Eigen::Index dim = 2 * n;
   if (dim <= std::max<Eigen::Index>(80, 2 * nev + 2)) {
@@ -66,18 +67,20 @@ Eigenpairs nearest_zero(const CompanionOp& op, Eigen::Index n, Eigen::Index nev)
     Eigen::EigenSolver<Eigen::MatrixXd> es(A);
     if (es.info() != Eigen::Success) throw std::runtime_error("rfem rotor: the dense companion eigensolve failed");
     out.lambda = es.eigenvalues().cwiseInverse();
-    out.X = es.eigenvectors().topRows(n);
+    out.V = es.eigenvectors();
     return out;
   }
   const Eigen::Index ncv = std::min<Eigen::Index>(dim, std::max<Eigen::Index>(2 * nev + 1, 40));
   Spectra::GenEigsSolver<CompanionOp> eigs(const_cast<CompanionOp&>(op), nev, ncv);
-  eigs.init();
+  if (start.size() == dim && start.norm() > 0) eigs.init(start.data());
+  else eigs.init();
   eigs.compute(Spectra::SortRule::LargestMagn, 10000, 1e-12);
   if (eigs.info() != Spectra::CompInfo::Successful)
     throw std::runtime_error(fmt::format("rfem rotor: shift-invert Arnoldi did not converge ({} of {} eigenvalues)",
                                          eigs.eigenvalues().size(), nev));
   out.lambda = eigs.eigenvalues().cwiseInverse();
-  out.X = eigs.eigenvectors().topRows(n);
+  out.V = eigs.eigenvectors();
+  out.iterations = eigs.num_iterations();
   return out;
 }
 
@@ -149,12 +152,12 @@ double backward_error(const SpMat& M, const SpMat& C, const SpMat& K, Cd lambda,
 }  // namespace
 
 WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, const Eigen::SparseLU<SpMat>& lu,
-                       const SpMat& C, int k) {
+                       const SpMat& C, int k, const Eigen::VectorXd& start) {
   const SpMat& M = sys.M;
   const Eigen::Index n = sys.n();
   const CompanionOp op(M, C, lu);
   const Eigen::Index nev = std::min<Eigen::Index>(2 * n - 2, 2 * k + 4);
-  Eigenpairs ep = nearest_zero(op, n, nev);
+  const Eigenpairs ep = nearest_zero(op, n, nev, start);
   // Each pair +-lambda once: Im lambda > 0, or a real root with Re >= 0.
   std::vector<Eigen::Index> keep;
   for (Eigen::Index i = 0; i < ep.lambda.size(); ++i) {
@@ -167,18 +170,24 @@ WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, co
             [&](Eigen::Index a, Eigen::Index b) { return std::abs(ep.lambda[a]) < std::abs(ep.lambda[b]); });
   const std::array<double, 3> norms = {norm1(M), norm1(C), norm1(K)};
   WhirlRoots out;
+  out.iterations = ep.iterations;
+  out.start = Eigen::VectorXd::Zero(2 * n);
+  for (std::size_t i = 0; i < keep.size() && static_cast<int>(out.omega.size()) < k; ++i) {
+    const Eigen::VectorXcd v = ep.V.col(keep[i]) / ep.V.col(keep[i]).norm();
+    out.start += v.real() + v.imag();
+  }
   for (std::size_t i = 0; i < keep.size() && static_cast<int>(out.omega.size()) < k;) {
     // A repeated root (its copies within 1e-8): one basis, turned to the orbits' senses.
     std::size_t j = i + 1;
     const Cd li = ep.lambda[keep[i]];
     while (j < keep.size() && std::abs(ep.lambda[keep[j]] - li) <= 1e-8 * std::abs(li)) ++j;
     Eigen::MatrixXcd X(n, static_cast<Eigen::Index>(j - i));
-    for (std::size_t m = i; m < j; ++m) X.col(static_cast<Eigen::Index>(m - i)) = ep.X.col(keep[m]);
+    for (std::size_t m = i; m < j; ++m) X.col(static_cast<Eigen::Index>(m - i)) = ep.V.col(keep[m]).head(n);
     if (j - i > 1) diagonalize_sense(model, sys, X);
     for (std::size_t m = i; m < j && static_cast<int>(out.omega.size()) < k; ++m) {
       const Cd l = ep.lambda[keep[m]];
       const Eigen::VectorXcd x = X.col(static_cast<Eigen::Index>(m - i));
-      const double be = backward_error(M, C, K, l, ep.X.col(keep[m]), norms);
+      const double be = backward_error(M, C, K, l, ep.V.col(keep[m]).head(n), norms);
       // Rounding leaves |Re lambda| of about sqrt(backward error) |lambda| where roots meet (a
       // defective pair at the edge of an unstable range); below that it is not a growth rate.
       const double noise = std::max(1e-8, 10.0 * std::sqrt(be)) * std::abs(l);
@@ -193,6 +202,8 @@ WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, co
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return out.omega[a] < out.omega[b]; });
   WhirlRoots sorted;
+  sorted.start = std::move(out.start);
+  sorted.iterations = out.iterations;
   for (std::size_t i : order) {
     sorted.omega.push_back(out.omega[i]);
     sorted.growth.push_back(out.growth[i]);
