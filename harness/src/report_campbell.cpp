@@ -46,6 +46,9 @@ std::string campbell_data(const Campbell& c) {
 
 void write_plot(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
   static const char* colours[] = {"#000000", "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"};
+  // Where a critical speed shows: seen from the ground on whirl = spin; in the rotating frame a
+  // forward one where a frequency reaches 0, a backward one where it reaches twice the spin.
+  const bool rotating = c.rotor->frame == Rotor::Frame::Rotating;
   std::vector<std::pair<std::string, std::string>> data;
   std::string plots;
   double top = 0;
@@ -56,21 +59,23 @@ void write_plot(Doc& doc, const SceneComparison& c, Context& ctx, const std::str
     for (const CampbellPoint& p : cb.points)
       for (double f : p.frequencies_rad_s) top = std::max(top, f);
     const std::string file = fmt::format("{}_campbell_{}.dat", sid, k), col = colours[k % 5];
+    std::string who = r.backend;
+    std::replace(who.begin(), who.end(), '_', '-');  // gnuplot's enhanced text reads _ as a subscript
     data.emplace_back(file, campbell_data(cb));
     const std::string path = data_path(ctx, file);
     plots += fmt::format("{}'{}' using 1:($3 > 0 ? $2 : 1/0) with points pt {} ps 0.7 lc rgb '{}' title '{} forward', "
                          "'{}' using 1:($3 < 0 ? $2 : 1/0) with points pt {} ps 0.7 lc rgb '{}' title '{} backward', "
                          "'{}' using 1:($3 == 0 ? $2 : 1/0) with points pt 2 ps 0.7 lc rgb '{}' notitle",
-                         plots.empty() ? "" : ", ", path, 7 + 2 * static_cast<int>(k), col, r.backend, path,
-                         6 + 2 * static_cast<int>(k), col, r.backend, path, col);
+                         plots.empty() ? "" : ", ", path, 7 + 2 * static_cast<int>(k), col, who, path,
+                         6 + 2 * static_cast<int>(k), col, who, path, col);
     std::string crit;
-    for (double w : cb.forward_criticals) crit += fmt::format("{:.10g} {:.10g}\n", w, w);
-    for (double w : cb.backward_criticals) crit += fmt::format("{:.10g} {:.10g}\n", w, w);
+    for (double w : cb.forward_criticals) crit += fmt::format("{:.10g} {:.10g}\n", w, rotating ? 0.0 : w);
+    for (double w : cb.backward_criticals) crit += fmt::format("{:.10g} {:.10g}\n", w, rotating ? 2 * w : w);
     if (!crit.empty()) {
       const std::string cf = fmt::format("{}_campbell_{}_crit.dat", sid, k);
       data.emplace_back(cf, crit);
       plots += fmt::format(", '{}' using 1:2 with points pt 3 ps 1.6 lc rgb '{}' title '{} critical speeds'",
-                           data_path(ctx, cf), col, r.backend);
+                           data_path(ctx, cf), col, who);
     }
   }
   if (plots.empty()) return;
@@ -78,14 +83,20 @@ void write_plot(Doc& doc, const SceneComparison& c, Context& ctx, const std::str
   const std::string body = fmt::format(
       "set key outside right top\nset grid\nset xlabel 'spin [rad/s]'\nset ylabel 'whirl frequency [rad/s]'\n"
       "set title 'Campbell diagram ({} frame)'\nset xrange [0:{:.10g}]\nset yrange [0:{:.10g}]\n"
-      "plot {}, x with lines dt 2 lc rgb '#888888' title '1x (whirl = spin)'",
-      to_string(c.rotor->frame), std::max(spin_top, 1e-9) * 1.02, top * 1.05, plots);
+      "plot {}, {}",
+      to_string(c.rotor->frame), std::max(spin_top, 1e-9) * 1.02, top * 1.05, plots,
+      rotating ? "2 * x with lines dt 2 lc rgb '#888888' title '2x (backward critical)'"
+               : "x with lines dt 2 lc rgb '#888888' title '1x (whirl = spin)'");
   const std::string name = sid + "_campbell";
   if (auto svg = plot_script(ctx, name, body, data, "860,520"); !svg.empty())
     doc.figure("plots/" + name + ".svg", svg,
-               "Whirl frequencies against spin, every back-end's default solve: filled markers forward whirl, open "
-               "ones backward, crosses neither; the dashed line is whirl = spin, and the large markers on it the "
-               "critical speeds each back-end solved for");
+               rotating ? "Whirl frequencies seen from the shaft against spin, every back-end's default solve: filled "
+                          "markers forward whirl, open ones backward, crosses neither (a root that grows or a planar "
+                          "orbit); the large markers are the critical speeds each back-end solved for: forward ones "
+                          "where a frequency reaches 0, backward ones on the dashed line, twice the spin"
+                        : "Whirl frequencies against spin, every back-end's default solve: filled markers forward "
+                          "whirl, open ones backward, crosses neither; the dashed line is whirl = spin, and the large "
+                          "markers on it the critical speeds each back-end solved for");
 }
 
 }  // namespace
