@@ -172,7 +172,7 @@ WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, co
   WhirlRoots out;
   out.iterations = ep.iterations;
   out.start = Eigen::VectorXd::Zero(2 * n);
-  for (std::size_t i = 0; i < keep.size() && static_cast<int>(out.omega.size()) < k; ++i) {
+  for (std::size_t i = 0; i < keep.size() && i < static_cast<std::size_t>(k); ++i) {  // the k nearest
     const Eigen::VectorXcd v = ep.V.col(keep[i]) / ep.V.col(keep[i]).norm();
     out.start += v.real() + v.imag();
   }
