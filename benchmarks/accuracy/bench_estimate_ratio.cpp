@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "modalbench/registry.hpp"
+#include "modalbench/rotor_scene.hpp"
 #include "modalbench/solver.hpp"
 
 using namespace modalbench;
@@ -61,19 +62,6 @@ double deflection_error(const Result& r, const Result& ref) {
     worst = std::max({worst, std::abs(a.u - b.u), std::abs(a.v - b.v), std::abs(a.w - b.w)});
   }
   return scale > 0 ? worst / scale : NAN;
-}
-
-double campbell_error(const Result& r, const Result& ref) {
-  const Campbell &a = r.campbell, &b = ref.campbell;
-  if (a.points.size() != b.points.size() || a.points.empty()) return NAN;
-  double worst = 0;
-  for (std::size_t p = 0; p < a.points.size(); ++p) {
-    const auto &f = a.points[p].frequencies_rad_s, &g = b.points[p].frequencies_rad_s;
-    if (f.size() != g.size()) return NAN;
-    for (std::size_t i = 0; i < f.size(); ++i)
-      worst = std::max(worst, std::abs(f[i] - g[i]) / (std::abs(g[i]) + a.points[p].spin_rad_s));
-  }
-  return worst;
 }
 
 }  // namespace
@@ -116,7 +104,7 @@ int main(int argc, char** argv) {
       const std::pair<const char*, std::pair<double, double>> rows[] = {
           {"frequencies", {e.frequencies, frequency_error(r, ref)}},
           {"deflections", {e.deflections, deflection_error(r, ref)}},
-          {"campbell", {e.campbell, campbell_error(r, ref)}}};
+          {"campbell", {e.campbell, campbell_difference(r.campbell, ref.campbell)}}};
       for (const auto& [q, v] : rows) {
         const auto [est, truth] = v;
         if (!std::isfinite(est) || !std::isfinite(truth)) continue;

@@ -7,16 +7,12 @@
 #include <cmath>
 
 #include "modalbench/difference_eq/difference_eq.hpp"
+#include "modalbench/rotor_scene.hpp"
 #include "modalbench/whirl.hpp"
 
 namespace modalbench::difference_eq {
 
 namespace {
-
-bool axisymmetric(const Scene& s) {
-  const Section sec = s.section();
-  return std::abs(sec.Iy - sec.Iz) <= 1e-12 * std::max(sec.Iy, sec.Iz);
-}
 
 /// The chain in x-y (EI_z): the x-z chain's springs, its own stiffness.
 RegularBeam beam_xy(const Scene& s, long R) {
@@ -74,14 +70,11 @@ std::string rotor_refusal(const Scene& s) {
   if (!s.point_supports.empty() || !s.masses.empty())
     return "difference_eq's rotor is the appendix's A3 chain without supports or discs between the ends (a disc's "
            "gyroscopic moment is not in it)";
-  if (rigid_body_modes(beam_of(s, 1)) > 0)
+  if (!rotor_held(s))
     return "difference_eq solves rotors on end supports that hold them (a free rotor's rigid whirl is not solved yet)";
-  if (!axisymmetric(s))
-    for (const Support* e : {&s.x0, &s.xL})
-      for (double k : {e->translational, e->rotational})
-        if (!(k == 0.0 || std::isinf(k)))
-          return "difference_eq's asymmetric shaft needs ends free, pinned, clamped or guided (its planes then share "
-                 "their mode shapes): an end spring of an asymmetric shaft couples them otherwise";
+  if (!axisymmetric_shaft(s) && !classical_ends(s))
+    return "difference_eq's asymmetric shaft needs ends free, pinned, clamped or guided (its planes then share "
+           "their mode shapes): an end spring of an asymmetric shaft couples them otherwise";
   return "";
 }
 
@@ -102,15 +95,15 @@ Campbell rotor_campbell(const Scene& s, long R, MassModel mass, Summary& sum) {
   for (int kk = std::max(k, 4);; kk *= 2) {
     const auto [v, w] = planes(s, R, mass, kk, sum);
     std::vector<double> all = w;
-    if (!axisymmetric(s)) all.insert(all.end(), v.begin(), v.end());
+    if (!axisymmetric_shaft(s)) all.insert(all.end(), v.begin(), v.end());
     std::sort(all.begin(), all.end());
     if (static_cast<int>(v.size()) < kk || std::min(v.back(), w.back()) > top) {
       c.forward_criticals = up_to(all, top);
-      if (axisymmetric(s)) c.backward_criticals = c.forward_criticals;
+      if (axisymmetric_shaft(s)) c.backward_criticals = c.forward_criticals;
       break;
     }
   }
-  c.criticals_note = axisymmetric(s) ? "the chain's bending frequencies: no gyroscopic moment, so each whirl crosses "
+  c.criticals_note = axisymmetric_shaft(s) ? "the chain's bending frequencies: no gyroscopic moment, so each whirl crosses "
                                        "whirl = spin at its own frequency, forward and backward"
                                      : "forward: where a rotating-frame frequency is 0 (either plane's frequency of a "
                                        "mode); backward critical speeds of an asymmetric shaft are not given";

@@ -15,31 +15,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "beam_attachments.hpp"
 #include "modalbench/exact/beams.hpp"
 #include "modalbench/numerics/line_system.hpp"
+#include "modalbench/rotor_scene.hpp"
 #include "modalbench/whirl.hpp"
 #include "whirl_line.hpp"
 
 namespace modalbench::exact::detail {
 
 namespace {
-
-bool axisymmetric(const Scene& s) {
-  for (const Segment& p : s.beam_pieces()) {
-    const Section sec = p.properties();
-    if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz)) return false;
-  }
-  return true;
-}
-
-/// Both ends free, pinned, clamped or guided (each spring 0 or held).
-bool classical_ends(const Scene& s) {
-  for (const Support* e : {&s.x0, &s.xL})
-    for (double k : {e->translational, e->rotational})
-      if (!(k == 0.0 || std::isinf(k))) return false;
-  return true;
-}
 
 struct Root {
   double omega = 0, growth = 0;
@@ -125,10 +109,9 @@ std::vector<double> synchronous(const Scene& s, int sense, double top, double sc
 }  // namespace
 
 std::string rotor_refusal(const Scene& s) {
-  if (!bending_restrained({s.x0.translational, s.x0.rotational}, {s.xL.translational, s.xL.rotational},
-                          line_points(s, ModeFamily::BendingXZ)))
+  if (!rotor_held(s))
     return "exact solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
-  if (axisymmetric(s)) return "";
+  if (axisymmetric_shaft(s)) return "";
   if (s.theory == Theory::EulerBernoulli && !s.is_stepped() && s.masses.empty() && s.point_supports.empty() &&
       classical_ends(s))
     return "";
@@ -140,7 +123,7 @@ std::string rotor_refusal(const Scene& s) {
 Campbell rotor_campbell(const Scene& s, Summary& sum) {
   Campbell c;
   const int k = s.request.modes;
-  const bool sym = axisymmetric(s);
+  const bool sym = axisymmetric_shaft(s);
   c.frame = to_string(s.rotor->frame);
   for (double spin : s.rotor->spin) {
     CampbellPoint p;

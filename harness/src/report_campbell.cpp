@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "modalbench/rotor_scene.hpp"
 #include "report_document.hpp"
 
 namespace modalbench::report_detail {
@@ -17,21 +18,6 @@ std::string speeds(const std::vector<double>& v) {
   std::string out;
   for (std::size_t i = 0; i < v.size() && i < 4; ++i) out += (out.empty() ? "" : ", ") + fmt::format("{:.6g}", v[i]);
   return v.size() > 4 ? out + ", …" : out;
-}
-
-/// The largest difference of a run's Campbell frequencies from exact's, paired by rank at each
-/// spin, relative to |f| + spin (NaN where the two do not pair).
-double vs_exact(const Campbell& a, const Campbell& ref) {
-  if (a.points.size() != ref.points.size() || a.points.empty()) return kNotMeasured;
-  double worst = 0;
-  for (std::size_t p = 0; p < a.points.size(); ++p) {
-    const auto& f = a.points[p].frequencies_rad_s;
-    const auto& g = ref.points[p].frequencies_rad_s;
-    if (f.size() != g.size()) return kNotMeasured;
-    for (std::size_t i = 0; i < f.size(); ++i)
-      worst = std::max(worst, std::abs(f[i] - g[i]) / (std::abs(g[i]) + a.points[p].spin_rad_s));
-  }
-  return worst;
 }
 
 /// Data file of one run: spin, frequency, sense (1 forward, -1 backward, 0 otherwise), one row per root.
@@ -121,7 +107,7 @@ void write_campbell(Doc& doc, const SceneComparison& c, Context& ctx, const std:
     rows.push_back({r.backend, x.summary.mesh, to_string(x.summary.status), speeds(cb.forward_criticals),
                     speeds(cb.backward_criticals), cb.unstable_spins.empty() ? "none" : speeds(cb.unstable_spins),
                     err_str(x.summary.error_estimate.campbell),
-                    exact && &r != exact ? err_str(vs_exact(cb, exact->result.campbell)) : "—",
+                    exact && &r != exact ? err_str(campbell_difference(cb, exact->result.campbell)) : "—",
                     err_str(cb.max_backward_error), secs_str(x.summary.total_time_s)});
     notes.push_back(fmt::format("{}: {}{}", r.backend, cb.empty() ? x.summary.message : cb.note,
                                 cb.criticals_note.empty() ? "" : "; critical speeds: " + cb.criticals_note));

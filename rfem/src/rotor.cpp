@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "modalbench/rfem/builders.hpp"
+#include "modalbench/rotor_scene.hpp"
 #include "analysis_detail.hpp"
 
 namespace modalbench::rfem::detail {
@@ -78,20 +79,10 @@ RotorMatrices rotor_matrices(const Model& model, const System& sys) {
 }
 
 std::string rotor_scene_refusal(const Scene& s) {
-  int held = (s.x0.translational > 0) + (s.xL.translational > 0), turned = (s.x0.rotational > 0) + (s.xL.rotational > 0);
-  for (const PointSupport& p : s.point_supports) {
-    held += p.support.translational > 0;
-    turned += p.support.rotational > 0;
-  }
-  if (!(held >= 2 || (held >= 1 && turned >= 1)))
-    return "rfem solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
-  if (s.rotor->frame == Rotor::Frame::Rotating && s.theory == Theory::Timoshenko)
-    for (const Segment& p : s.beam_pieces()) {
-      const Section sec = p.properties();
-      if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz))
-        return "rfem's rotating frame takes one diametral inertia per rigid element: an asymmetric section's rotary "
-               "inertias (Timoshenko theory) differ; use Euler-Bernoulli theory for an asymmetric shaft";
-    }
+  if (!rotor_held(s)) return "rfem solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
+  if (s.rotor->frame == Rotor::Frame::Rotating && s.theory == Theory::Timoshenko && !axisymmetric_shaft(s))
+    return "rfem's rotating frame takes one diametral inertia per rigid element: an asymmetric section's rotary "
+           "inertias (Timoshenko theory) differ; use Euler-Bernoulli theory for an asymmetric shaft";
   return "";
 }
 
