@@ -91,6 +91,7 @@ AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, Scalar lamb
     Mat term = Mat::Zero(ce->n_free, ce->n_free);
     if (ce->n_free > 0 && ce->K.size() > 0) term += ce->K.template cast<Scalar>();
     if (ce->mass_scaled.size() > 0) term -= lambda * ce->mass_scaled.template cast<Scalar>();
+    if (ce->gyro_scaled.size() > 0) term += c.whirl_term(lambda) * ce->gyro_scaled.template cast<Scalar>();
     if (ce->n_free > 0 && term.norm() > 0) {
       Mat pad = Mat::Zero(2 * mc, 2 * mc);
       if (node + 1 < nn) pad.topLeftCorner(ce->n_free, ce->n_free) = term;

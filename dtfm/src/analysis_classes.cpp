@@ -22,6 +22,13 @@ using End = LineAnalysis::ClassLine::End;
 struct Projected {
   Eigen::MatrixXd St, C, Qt, M;
 };
+
+/// W^T A W / sigma, symmetrized (mass-like matrices over the fields); empty stays empty.
+Eigen::MatrixXd scaled(const LineAnalysis::ClassLine& l, const Eigen::MatrixXd& A) {
+  if (A.size() == 0) return A;
+  const Eigen::MatrixXd P = l.W.transpose() * A * l.W / l.sigma;
+  return 0.5 * (P + P.transpose());
+}
 Projected project(const LineAnalysis::ClassLine& l, const Eigen::MatrixXd& Vs, const Eigen::MatrixXd& M,
                   const Eigen::MatrixXd& C, const Eigen::MatrixXd& S, const Eigen::MatrixXd& X,
                   const Eigen::MatrixXd& Q1) {
@@ -102,6 +109,10 @@ End class_end(const LineAnalysis::ClassLine& l, const EndCondition& end, double 
       ce.mass_scaled = 0.5 * (ce.mass_scaled + ce.mass_scaled.transpose()).eval();
     }
   }
+  if (end.gyro.size() > 0 && end.gyro.cwiseAbs().maxCoeff() > 0) {
+    const Eigen::MatrixXd Bf = ce.B.leftCols(ce.n_free);
+    ce.gyro_scaled = Bf.transpose() * scaled(l, end.gyro) * Bf;
+  }
   return ce;
 }
 
@@ -131,10 +142,12 @@ LineAnalysis::LineAnalysis(const PrismModel& model, SolveControls controls) : mo
     line->C = p.C;
     line->Qt = p.Qt;
     line->M = p.M;
+    line->G = scaled(*line, model.G);
+    line->whirl = model.whirl;
     line->first_to = model.steps.empty() ? model.length : model.first_piece_to;
     for (const PieceOperator& op : model.steps) {
       const Projected q = project(*line, Vs, op.M, op.C, op.S, op.X, op.Q1);
-      line->steps.push_back({op.x_to, q.St, q.C, q.Qt, q.M});
+      line->steps.push_back({op.x_to, q.St, q.C, q.Qt, q.M, scaled(*line, op.G)});
     }
     for (int e = 0; e < 2; ++e) line->ends[e] = class_end(*line, model.ends[e], e == 0 ? 0.0 : model.length, si);
     for (const PointCondition& pc : model.points) line->points.push_back(class_end(*line, pc.cond, pc.x, si));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "modalbench/dtfm/analysis.hpp"
@@ -21,6 +22,8 @@ struct LineAnalysis::ClassLine {
   ModeFamily family = ModeFamily::Unknown;
   Eigen::MatrixXd W, Winv;
   Eigen::MatrixXd St, C, Qt, M;  // the operator (a stepped beam: its first piece's)
+  Eigen::MatrixXd G;             // a whirl line's gyroscopic inertia, scaled like M (empty: none)
+  double whirl = 0;              // s Omega (PrismModel::whirl)
   double sigma = 1;
   double length = 0;
   /// A node's conditions: an end's, or a support / point mass between the ends.
@@ -32,13 +35,14 @@ struct LineAnalysis::ClassLine {
     Eigen::MatrixXd Mc;       // point masses, mc x mc in class coordinates (W^T mass W, unscaled); empty: none
     Eigen::MatrixXd Mfields;  // the same over the fields (m x m), for participations
     Eigen::MatrixXd mass_scaled;  // B^T Mc B / sigma over the admissible motions (K - lambda this); empty: none
+    Eigen::MatrixXd gyro_scaled;  // the discs' J_p the same way (K + whirl sqrt(lambda) this); empty: none
   } ends[2];
   std::vector<End> points;  // between the ends, by ascending x
   /// Stepped beams: the operator of every piece after the first, each from the previous one's
   /// x_to (the first over [0, first_to]).
   struct Piece {
     double x_to = 0;
-    Eigen::MatrixXd St, C, Qt, M;
+    Eigen::MatrixXd St, C, Qt, M, G;
   };
   std::vector<Piece> steps;
   double first_to = 0;
@@ -58,6 +62,14 @@ struct LineAnalysis::ClassLine {
   const Eigen::MatrixXd& St_of(int piece) const { return piece == 0 ? St : steps[static_cast<std::size_t>(piece) - 1].St; }
   const Eigen::MatrixXd& Qt_of(int piece) const { return piece == 0 ? Qt : steps[static_cast<std::size_t>(piece) - 1].Qt; }
   const Eigen::MatrixXd& C_of(int piece) const { return piece == 0 ? C : steps[static_cast<std::size_t>(piece) - 1].C; }
+  const Eigen::MatrixXd& G_of(int piece) const { return piece == 0 ? G : steps[static_cast<std::size_t>(piece) - 1].G; }
+  /// The whirl's coefficient of G at lambda: whirl sqrt(lambda) (0 without spin).
+  template <class Scalar>
+  Scalar whirl_term(Scalar lambda) const {
+    if (whirl == 0.0) return Scalar(0);
+    if constexpr (std::is_floating_point_v<Scalar>) return whirl * std::sqrt(std::max(lambda, Scalar(0)));
+    else return whirl * std::sqrt(lambda);
+  }
   /// Where steps and points need nodes.
   std::vector<double> required_nodes() const {
     std::vector<double> out;
@@ -82,6 +94,8 @@ struct LineAnalysis::ClassLine {
     A.topLeftCorner(mc, mc) = (-St_of(piece)).template cast<Scalar>();
     A.topRightCorner(mc, mc) = C_of(piece).template cast<Scalar>();
     A.bottomLeftCorner(mc, mc) = Qt_of(piece).template cast<Scalar>() - lambda * M_of(piece).template cast<Scalar>();
+    if (whirl != 0.0 && G_of(piece).size() > 0)
+      A.bottomLeftCorner(mc, mc) += whirl_term(lambda) * G_of(piece).template cast<Scalar>();
     A.bottomRightCorner(mc, mc) = St_of(piece).transpose().template cast<Scalar>();
     return A;
   }

@@ -52,6 +52,12 @@ LineAnalysis::Mesh LineAnalysis::mesh_for(ClassLine& c, double lambda_max, const
   double re = c.re0, im = c.im0;
   if (lambda_max > 0)
     for (int k = 0; k < c.pieces(); ++k) wavenumber_bounds(c.state(lambda_max, k), re, im);
+  // A whirl line's rotary term lambda rho I - s Omega sqrt(lambda) rho I_p is not monotone in
+  // lambda (forward whirl: least at sqrt(lambda) = Omega I_p / 2 I): the bounds at the ends of the
+  // range do not hold between them, so they are taken on a geometric sweep below lambda_max too.
+  if (c.whirl != 0.0 && lambda_max > 0)
+    for (double l = 0.5 * lambda_max; l > 1e-8 * lambda_max; l *= 0.5)
+      for (int k = 0; k < c.pieces(); ++k) wavenumber_bounds(c.state(l, k), re, im);
   Mesh mesh;
   mesh.h_im = im > 0 ? ctl_.im_h / im : L;
   mesh.h_re = re > 0 ? ctl_.re_h / re : L;

@@ -12,6 +12,7 @@
 #include "modalbench/equilibrium.hpp"
 #include "modalbench/timer.hpp"
 #include "plate_reactions.hpp"
+#include "rotor.hpp"
 
 namespace modalbench::dtfm {
 
@@ -36,18 +37,17 @@ void add_reactions_and_forces(const Scene& s, const std::vector<PointReaction>& 
     re.moment = {p.F[3], p.F[4], p.F[5]};
     r.reactions.push_back(re);
   }
-  const bool planar = s.physics != Physics::Bending, spatial = s.physics == Physics::Spatial;
   for (Deflection& d : r.deflections) {
     const InternalForces f = free_body_forces(s, r.reactions, d.position[0]);
     d.forces = {};
     d.forces.My = f.My;
     d.forces.Qz = f.Qz;
-    if (planar) d.forces.N = f.N;
-    if (spatial) {
+    if (carries_axial(s.physics)) d.forces.N = f.N;
+    if (carries_xy(s.physics)) {
       d.forces.Mz = f.Mz;
       d.forces.Qy = f.Qy;
-      d.forces.T = f.T;
     }
+    if (carries_torsion(s.physics)) d.forces.T = f.T;
     d.has_forces = true;
   }
 }
@@ -80,12 +80,11 @@ void add_plate_reactions(const Scene& s, const PrismModel& model, const FieldInt
 
 Capability DtfmSolver::supports(const Scene& s) const {
   Capability c;
-  if (s.is_beam() && s.physics == Physics::Lateral) {
-    c.reason = "dtfm has no lateral (rotor) prism model yet: no Campbell diagram; for a shaft's modes at rest, "
-               "physics = \"spatial\"";
-    return c;
-  }
   c.modes = c.statics = c.frf = true;
+  if (s.rotor) {
+    c.reason = detail::rotor_refusal(s);
+    c.campbell = c.reason.empty();
+  }
   return c;
 }
 
@@ -184,7 +183,10 @@ ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& 
   double fields = 0;  // prism DOF fields in the model
   if (scene.is_plate() && mesh.counts.size() == 1) fields = 3.0 * (mesh.counts[0] + 1);
   else if (!scene.is_plate() && !mesh.counts.empty()) {
-    const double per = scene.physics == Physics::Spatial ? 6 : scene.physics == Physics::Planar ? 3 : 2;
+    const double per = scene.physics == Physics::Spatial   ? 6
+                       : scene.physics == Physics::Lateral ? 4
+                       : scene.physics == Physics::Planar  ? 3
+                                                           : 2;
     fields = per * mesh.counts[0] * (mesh.counts.size() > 1 ? mesh.counts[1] : mesh.counts[0]);
   }
   if (fields <= 0) return e;
@@ -200,8 +202,9 @@ ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& 
 std::vector<Discretization> DtfmSolver::mesh_ladder(const Scene& scene) const {
   std::vector<const char*> specs;
   if (scene.is_plate()) specs = {"4", "7", "10", "20", "40"};
-  else if (scene.cross_section.shape != SectionShape::Rectangle || scene.is_stepped())
-    specs = {"1x1"};  // only uniform rectangles are cut
+  else if (scene.cross_section.shape != SectionShape::Rectangle || scene.is_stepped() ||
+           scene.physics == Physics::Lateral)
+    specs = {"1x1"};  // only uniform rectangles are cut, and not for a rotor's lateral model
   else if (scene.physics == Physics::Spatial) specs = {"1x1", "2x2", "4x4", "6x6"};  // 6 fields per prism
   else specs = {"1x1", "2x2", "4x4", "8x8"};
   std::vector<Discretization> out;
@@ -233,8 +236,7 @@ std::vector<OptionSpec> DtfmSolver::option_specs() const {
 
 ModeShapes DtfmSolver::shapes(const Scene& scene, LineAnalysis& la, const ModeList& ml) {
   const bool beam = scene.is_beam();
-  const std::array<bool, 3> directions = {beam && scene.physics != Physics::Bending,
-                                          beam && scene.physics == Physics::Spatial, true};
+  const std::array<bool, 3> directions = {beam && carries_axial(scene.physics), beam && carries_xy(scene.physics), true};
   const bool moments = beam && scene.request.shapes && scene.request.shapes->moments;
   ModeShapes ms = la.mode_shapes(ml, scene.shape_points(), scene.shape_components(), directions, moments);
   const auto& g = scene.geometry;
@@ -380,7 +382,18 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
     note_frf_omissions(sum, skipped, f.points, reason);
     sum.timings_s.frf += timer.lap();
   }
-  sum.set_diagnostic("count_evaluations", static_cast<double>(la.evaluations()));
+  if (scene.rotor) {
+    // Its failure is the Campbell diagram's alone: the modes and statics stand.
+    try {
+      r.campbell = detail::rotor_campbell(scene, mo, controls, sum);
+      sum.method += "; Campbell: " + r.campbell.note;
+    } catch (const std::runtime_error& e) {
+      sum.raise(Status::NumericalIssue, std::string("dtfm: Campbell diagram: ") + e.what());
+    }
+    sum.timings_s.campbell += timer.lap();
+  }
+  sum.set_diagnostic("count_evaluations",
+                     std::max(0.0, sum.diagnostic("count_evaluations")) + static_cast<double>(la.evaluations()));
   sum.set_diagnostic("segment_asymmetry", la.max_asymmetry());
   sum.unknowns = la.max_unknowns();
   sum.threads = std::max(sum.threads, la.threads_used());

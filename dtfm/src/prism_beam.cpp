@@ -29,7 +29,10 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
   const auto& mat = s.material;
   int ny = ny_req;
   std::vector<int> active;
-  if (s.physics != Physics::Spatial) {
+  if (s.physics == Physics::Lateral) {
+    // A rotor's lateral model: one prism (build_model refuses a cut section), bending in both planes.
+    active = {Uy, Uz, Ry, Rz};
+  } else if (s.physics != Physics::Spatial) {
     if (ny_req > 1)
       mdl.notes.push_back(fmt::format("physics '{}' is a plane x-z problem: the {} prisms across the width move "
                                       "together, so the model is 1x{} (the width division changes nothing)",
@@ -159,6 +162,7 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
   // Which rigid motions exist in this model.
   std::vector<int> motions;
   if (s.physics == Physics::Spatial) motions = {0, 1, 2, 3, 4, 5};
+  else if (s.physics == Physics::Lateral) motions = {1, 2, 4, 5};
   else if (s.physics == Physics::Bending && nz == 1) motions = {2, 4};
   else motions = {0, 2, 4};
   auto end = [&](const Support& sp, const char* where) {
@@ -224,12 +228,12 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
   std::string fields;
   for (int d : active) fields += (fields.empty() ? "" : ", ") + std::string(dof_name(d));
   mdl.description = fmt::format("{}x{} prisms ({}; {} per prism: {}), {} layers, {} prisms", ny, nz,
-                                s.physics == Physics::Spatial ? "spatial" : "plane x-z", active.size(), fields,
+                                s.physics == Physics::Spatial ? "spatial" : s.physics == Physics::Lateral ? "lateral: x-z and x-y" : "plane x-z", active.size(), fields,
                                 to_string(opt.layers), eb ? "Euler-Bernoulli" : "Timoshenko");
   const double Iy = Bw * Hh * Hh * Hh / 12.0, Iz = Hh * Bw * Bw * Bw / 12.0;
-  const double Imin = s.physics == Physics::Spatial ? std::min(Iy, Iz) : Iy;
+  const double Imin = carries_xy(s.physics) ? std::min(Iy, Iz) : Iy;
   mdl.lambda_scale = std::pow(std::numbers::pi / L, 4) * E * Imin / (rho * Bw * Hh);
-  mdl.translation_scale = std::min(dz, s.physics == Physics::Spatial ? dy : dz);
+  mdl.translation_scale = std::min(dz, carries_xy(s.physics) ? dy : dz);
   return mdl;
 }
 

@@ -177,6 +177,21 @@ Eigen::RowVectorXd PrismModel::w_observer(double y) const {
   return load_vector(unit).transpose();
 }
 
+namespace {
+/// Point masses lower the first mode below the builders' scale (the structure's own mass alone) as
+/// a Rayleigh quotient would, stiffness over total mass: the scale sets the slicing's absolute floor
+/// (1e-14 of it) and the rigid threshold, so a shaft of 1.6e-8 of its disc's mass had its first
+/// whirl 2e-7 off (the floor 1e-6 of omega^2) before.
+void mass_scale(PrismModel& mdl, const Scene& s) {
+  double own = 0, points = 0;
+  if (s.is_plate()) own = s.material.rho * s.geometry.length * s.geometry.width * s.geometry.height;
+  else
+    for (const Segment& p : s.beam_pieces()) own += p.material.rho * p.properties().A * p.length();
+  for (const PointMass& pm : s.masses) points += pm.mass;
+  if (points > 0 && own > 0) mdl.lambda_scale *= own / (own + points);
+}
+}  // namespace
+
 PrismModel build_model(const Scene& scene, const Discretization& mesh, const ModelOptions& options) {
   const auto bad = [&](const std::string& why) { throw InputError("command line", "--mesh", why); };
   if (scene.is_plate()) {
@@ -186,6 +201,7 @@ PrismModel build_model(const Scene& scene, const Discretization& mesh, const Mod
     if (n < 2 || n > 400) bad("the number of strips must lie in [2, 400] (got " + std::to_string(n) + ")");
     PrismModel mdl = detail::build_plate(scene, n, options);
     detail::add_points(mdl, scene);
+    mass_scale(mdl, scene);
     return mdl;
   }
   int ny = 0, nz = 0;
@@ -196,6 +212,10 @@ PrismModel build_model(const Scene& scene, const Discretization& mesh, const Mod
   } else {
     bad("the dtfm beam mesh is NYxNZ prisms across the width and height, e.g. 2x2 (got '" + mesh.spec() + "')");
   }
+  if (scene.physics == Physics::Lateral && ny * nz > 1)
+    bad(fmt::format("a lateral (rotor) model is one prism per section in dtfm (1x1): the spin's gyroscopic moment "
+                    "acts on the section's rotation, which a cut section does not have as one field (got {}x{})",
+                    ny, nz));
   const int per = scene.physics == Physics::Spatial ? 6 : 3;
   const long fields = static_cast<long>(scene.physics == Physics::Spatial ? ny : 1) * nz * per;
   if (ny > 64 || nz > 64 || fields > 800)
@@ -208,6 +228,7 @@ PrismModel build_model(const Scene& scene, const Discretization& mesh, const Mod
                                       : detail::build_beam(scene, ny, nz, options);
   if (scene.is_stepped()) detail::add_steps(mdl, scene, ny, nz, options);
   detail::add_points(mdl, scene);
+  mass_scale(mdl, scene);
   return mdl;
 }
 

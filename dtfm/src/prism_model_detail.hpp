@@ -121,5 +121,8 @@ Scene piece_scene(const Scene& s, const Segment& piece);
 void add_steps(PrismModel& mdl, const Scene& s, int ny, int nz, const ModelOptions& opt);
 /// The scene's supports between the ends and point masses (those at an end into the end).
 void add_points(PrismModel& mdl, const Scene& s);
+/// A whirl line's discs (after add_points): each mass's polar inertia Jx on the section's theta_y
+/// there (EndCondition::gyro).
+void add_disc_gyro(PrismModel& mdl, const Scene& s);
 
 }  // namespace modalbench::dtfm::detail

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "prism_model_detail.hpp"
 
@@ -122,6 +123,22 @@ void add_points(PrismModel& mdl, const Scene& s) {
   if (mdl.kind == SceneKind::Plate) plate_points_done(mdl, s);
 }
 
+void add_disc_gyro(PrismModel& mdl, const Scene& s) {
+  const double L = mdl.length;
+  for (const PointMass& pm : s.masses) {
+    if (pm.Jx == 0.0) continue;
+    EndCondition* e = nullptr;
+    if (std::abs(pm.x) <= 1e-12 * L) e = &mdl.ends[0];
+    else if (std::abs(pm.x - L) <= 1e-12 * L) e = &mdl.ends[1];
+    for (auto& p : mdl.points)
+      if (std::abs(p.x - pm.x) <= 1e-12 * L) e = &p.cond;
+    if (!e) throw std::logic_error("dtfm: a disc's node is missing from the model");
+    const Eigen::VectorXd my = resultant_spread(mdl, pm.y).col(4);  // the section's theta_y
+    if (e->gyro.size() == 0) e->gyro = Eigen::MatrixXd::Zero(mdl.m, mdl.m);
+    e->gyro += pm.Jx * my * my.transpose();
+  }
+}
+
 Scene piece_scene(const Scene& s, const Segment& piece) {
   Scene u = s;
   u.segments.clear();
@@ -141,7 +158,7 @@ void add_steps(PrismModel& mdl, const Scene& s, int ny, int nz, const ModelOptio
     const PrismModel p = build_beam(piece_scene(s, pieces[i]), ny, nz, opt);
     if (p.m != mdl.m || p.field_dof != mdl.field_dof)
       throw std::logic_error("dtfm: the pieces of a stepped beam have different fields");
-    mdl.steps.push_back({pieces[i].x_to, p.M, p.C, p.S, p.X, p.Q1});
+    mdl.steps.push_back({pieces[i].x_to, p.M, p.C, p.S, p.X, p.Q1, {}});
   }
   mdl.description += fmt::format(", {} pieces (stepped)", pieces.size());
 }

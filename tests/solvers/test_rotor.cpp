@@ -9,8 +9,9 @@
 //     (a real root) for Omega between w_1 and w_2;
 //   - a symmetric shaft seen from its rotating frame: the stationary frame's forward whirl at
 //     w_F - Omega, the backward at w_B + Omega (a missing factor 2 in the Coriolis terms breaks it).
-// exact is held to 1e-9 (its roots are bracketed to 1e-13); rfem and difference_eq (the appendix's
-// A3 chain, Euler-Bernoulli) to their own error estimates.
+// exact is held to 1e-9 (its roots are bracketed to 1e-13); dtfm's one-prism line (the shaft's own
+// theory, its roots polished to 1e-11 in omega^2) to 1e-8; rfem and difference_eq (the appendix's A3
+// chain, Euler-Bernoulli) to their own error estimates.
 #define BOOST_TEST_MODULE rotor
 #include <boost/test/unit_test.hpp>
 
@@ -38,9 +39,11 @@ Result solve(const std::string& backend, const Scene& s) {
   return r;
 }
 
-/// The tolerance a back-end's Campbell frequencies are held to: exact 1e-9, a mesh its estimate.
+/// The tolerance a back-end's Campbell frequencies are held to: exact 1e-9; dtfm's one prism (no
+/// discretization: the count's polish, 1e-11 in omega^2, and the rounding of the segment matrices,
+/// whose stiffness grows like 1/h^3 against the mass's h) 1e-8; a mesh its estimate.
 double allowed(const std::string& backend, const Result& r) {
-  return backend == "exact" ? 1e-9 : r.summary.error_estimate.campbell;
+  return backend == "exact" ? 1e-9 : backend == "dtfm" ? 1e-8 : r.summary.error_estimate.campbell;
 }
 
 // ---- the pinned Timoshenko shaft (scenes/rotor_timoshenko_shaft.toml)
@@ -75,7 +78,7 @@ struct Shaft {
 BOOST_AUTO_TEST_CASE(a_pinned_timoshenko_shaft_whirls_and_goes_critical_as_its_closed_form) {
   const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_timoshenko_shaft.toml");
   const Shaft sh;
-  for (const std::string backend : {"exact", "rfem"}) {
+  for (const std::string backend : {"exact", "dtfm", "rfem"}) {
     const Result r = solve(backend, s);
     const double tol = allowed(backend, r);
     BOOST_TEST_INFO(backend);
@@ -107,9 +110,11 @@ BOOST_AUTO_TEST_CASE(a_symmetric_shaft_seen_from_its_own_frame_whirls_at_the_sta
   st.rotor->spin = {0.0, 700.0, 2500.0};
   Scene ro = st;
   ro.rotor->frame = Rotor::Frame::Rotating;
-  for (const std::string backend : {"exact", "rfem", "difference_eq"}) {
+  for (const std::string backend : {"exact", "dtfm", "rfem", "difference_eq"}) {
     const Solver& b = registry().get(backend);
-    const Discretization mesh = backend == "exact" ? Discretization{} : Discretization{{64}};
+    const Discretization mesh = backend == "exact"  ? Discretization{}
+                                : backend == "dtfm" ? Discretization::parse("1x1")
+                                                    : Discretization{{64}};
     Options o;
     o.estimate_error = false;  // one mesh: the identity holds for the discrete model as it stands
     const Result a = b.solve(st, mesh, o), c = b.solve(ro, mesh, o);
@@ -168,7 +173,7 @@ modes = 4
 )";
   const Scene s = parse_scene(text, "jeffcott.toml");
   const double wt = std::sqrt(48 * EI / (m * L * L * L)), kr = 12 * EI / L;
-  for (const std::string backend : {"exact", "rfem"}) {
+  for (const std::string backend : {"exact", "dtfm", "rfem"}) {
     const Result r = solve(backend, s);
     const double tol = std::max(allowed(backend, r), 1e-7);
     for (const CampbellPoint& p : r.campbell.points) {
@@ -285,26 +290,85 @@ modes = 2
   BOOST_TEST((l.summary.status == Status::Unsupported), l.summary.message);
 }
 
-BOOST_AUTO_TEST_CASE(rfem_and_exact_agree_on_friswell_s_two_disc_rotor_within_rfem_s_estimate) {
+BOOST_AUTO_TEST_CASE(rfem_dtfm_and_exact_agree_on_friswell_s_two_disc_rotor) {
   // Friswell et al. Example 5.9.1 (scenes/rotor_friswell_two_discs.toml): no closed form; exact
-  // (per whirl direction, counted) is the second method for rfem, root by root, sense by sense,
-  // critical speed by critical speed, across 0 to 4000 rev/min.
+  // (per whirl direction, counted on its transfer matrices) is the second method for rfem (within
+  // its estimate) and for dtfm (its prism line's segment dynamic stiffness, the same Timoshenko
+  // shaft: within 1e-8), root by root, sense by sense, critical speed by critical speed, across 0
+  // to 4000 rev/min.
   const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_friswell_two_discs.toml");
-  const Result e = solve("exact", s), r = solve("rfem", s);
-  const double tol = allowed("rfem", r);
-  BOOST_TEST(tol <= s.request.tolerance);
-  for (std::size_t p = 0; p < s.rotor->spin.size(); ++p) {
-    const CampbellPoint &a = r.campbell.points[p], &b = e.campbell.points[p];
-    BOOST_TEST_REQUIRE(a.frequencies_rad_s.size() == b.frequencies_rad_s.size());
-    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
-      BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i);
-      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) <= tol * (b.frequencies_rad_s[i] + a.spin_rad_s));
-      if (a.spin_rad_s > 0) BOOST_TEST((a.whirl[i] == b.whirl[i]));
+  const Result e = solve("exact", s);
+  for (const std::string backend : {"rfem", "dtfm"}) {
+    const Result r = solve(backend, s);
+    const double tol = allowed(backend, r);
+    BOOST_TEST_INFO(backend);
+    BOOST_TEST(tol <= s.request.tolerance);
+    for (std::size_t p = 0; p < s.rotor->spin.size(); ++p) {
+      const CampbellPoint &a = r.campbell.points[p], &b = e.campbell.points[p];
+      BOOST_TEST_REQUIRE(a.frequencies_rad_s.size() == b.frequencies_rad_s.size());
+      for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
+        BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i);
+        BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) <= tol * (b.frequencies_rad_s[i] + a.spin_rad_s));
+        if (a.spin_rad_s > 0) BOOST_TEST((a.whirl[i] == b.whirl[i]));
+      }
+    }
+    for (const auto& [x, y] : {std::pair{&r.campbell.forward_criticals, &e.campbell.forward_criticals},
+                               std::pair{&r.campbell.backward_criticals, &e.campbell.backward_criticals}}) {
+      BOOST_TEST_REQUIRE(x->size() == y->size());
+      for (std::size_t i = 0; i < x->size(); ++i) BOOST_TEST(rel((*x)[i], (*y)[i]) <= tol);
     }
   }
-  for (const auto& [x, y] : {std::pair{&r.campbell.forward_criticals, &e.campbell.forward_criticals},
-                             std::pair{&r.campbell.backward_criticals, &e.campbell.backward_criticals}}) {
-    BOOST_TEST_REQUIRE(x->size() == y->size());
-    for (std::size_t i = 0; i < x->size(); ++i) BOOST_TEST(rel((*x)[i], (*y)[i]) <= tol);
+}
+
+BOOST_AUTO_TEST_CASE(the_lateral_model_at_rest_bends_in_both_planes_as_the_closed_forms) {
+  // The asymmetric shaft without spin, loaded across in both planes: pinned-pinned frequencies
+  // (n pi / L)^2 sqrt(EI / rho A) per plane (EI_z for v, EI_y for w), the point load's deflection
+  // P b x (L^2 - b^2 - x^2) / (6 L EI) left of it (mirrored right of it), and reactions that balance
+  // the loads. exact and dtfm's one prism (the Euler-Bernoulli beam itself) to 1e-8.
+  Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_asymmetric_shaft.toml");
+  s.rotor.reset();
+  const double E = 2.1e11, rho = 7850.0, L = 1.2, b = 0.04, h = 0.05, A = b * h;
+  const double Iy = b * h * h * h / 12, Iz = h * b * b * b / 12;
+  PointLoad fy, fz;
+  fy.x = 0.4;
+  fy.Fy = 1000.0;
+  fz.x = 0.7;
+  fz.Fz = -2000.0;
+  s.loads = {fy, fz};
+  s.request.modes = 6;
+  s.request.probes = {{0.3, 0.0}, {0.9, 0.0}};
+  auto deflection = [&](double P, double a, double EI, double x) {
+    if (x > a) return P * a * (L - x) * (L * L - a * a - (L - x) * (L - x)) / (6 * L * EI);
+    const double bb = L - a;
+    return P * bb * x * (L * L - bb * bb - x * x) / (6 * L * EI);
+  };
+  std::vector<double> ref;
+  for (int n = 1; n <= 6; ++n)
+    for (double I : {Iy, Iz}) ref.push_back(std::pow(n * kPi / L, 2) * std::sqrt(E * I / (rho * A)));
+  std::sort(ref.begin(), ref.end());
+  for (const std::string backend : {"exact", "dtfm"}) {
+    const Solver& bk = registry().get(backend);
+    const Result r = bk.solve(s, bk.default_mesh(s), Options{});
+    BOOST_TEST_INFO(backend << ": " << r.summary.message);
+    BOOST_TEST(r.ok());
+    BOOST_TEST_REQUIRE(r.frequencies_rad_s.size() == 6u);
+    for (std::size_t i = 0; i < 6; ++i) BOOST_TEST(rel(r.frequencies_rad_s[i], ref[i]) <= 1e-8);
+    BOOST_TEST_REQUIRE(r.deflections.size() == 2u);
+    const double scale = std::abs(deflection(fz.Fz, fz.x, E * Iy, fz.x));
+    for (const Deflection& d : r.deflections) {
+      const double x = d.position[0];
+      BOOST_TEST_INFO(backend << " x " << x);
+      BOOST_TEST(std::abs(d.v - deflection(fy.Fy, fy.x, E * Iz, x)) <= 1e-8 * scale);
+      BOOST_TEST(std::abs(d.w - deflection(fz.Fz, fz.x, E * Iy, x)) <= 1e-8 * scale);
+      BOOST_TEST(d.u == 0.0);
+      BOOST_TEST(d.theta_x == 0.0);
+    }
+    double Ry = 0, Rz = 0;
+    for (const Reaction& re : r.reactions) {
+      Ry += re.force[1];
+      Rz += re.force[2];
+    }
+    BOOST_TEST(std::abs(Ry + fy.Fy) <= 1e-9 * 3000.0);
+    BOOST_TEST(std::abs(Rz + fz.Fz) <= 1e-9 * 3000.0);
   }
 }

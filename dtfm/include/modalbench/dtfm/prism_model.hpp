@@ -90,6 +90,8 @@ struct EndCondition {
   std::string text;   ///< what it is, for messages
   /// m x m: point masses there, kinetic energy 1/2 qdot^T mass qdot over the fields (empty: none).
   Eigen::MatrixXd mass;
+  /// m x m: the discs' polar inertia J_p on the bending rotation (a whirl line's, PrismModel::whirl).
+  Eigen::MatrixXd gyro;
 };
 
 /// A beam's support or point mass between its ends (`[[supports.points]]`, `[[masses]]`): the
@@ -106,6 +108,7 @@ struct PointCondition {
 struct PieceOperator {
   double x_to = 0;
   Eigen::MatrixXd M, C, S, X, Q1;
+  Eigen::MatrixXd G;  ///< the piece's gyroscopic inertia (PrismModel::G); empty: none
 };
 
 /// A reflection of the section as a signed permutation of the fields: (Pi q)_k = sign_k q_{perm_k}.
@@ -143,6 +146,12 @@ struct PrismModel {
   /// first piece's, over [0, first_piece_to]); empty for a uniform beam.
   std::vector<PieceOperator> steps;
   double first_piece_to = 0;
+  /// One whirl direction of a spinning axisymmetric shaft (dtfm/src/rotor.cpp): the polar rotary
+  /// inertia rho I_p per length on the bending rotation (m x m; empty: none; discs: EndCondition::gyro)
+  /// and whirl = s Omega (s = +1 forward, -1 backward): the rotary inertia term lambda M becomes
+  /// lambda M - s Omega sqrt(lambda) G, i.e. rho I omega^2 -> rho I omega^2 - s rho I_p Omega omega.
+  Eigen::MatrixXd G;
+  double whirl = 0;
   std::vector<Reflection> reflections;
   std::vector<FieldClass> classes;
   double translation_scale = 1;  ///< a length: translations are divided by it in the line solves
