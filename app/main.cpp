@@ -222,12 +222,29 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
   const auto& ee = sum.error_estimate;
   std::vector<std::string> est;
-  if (std::isfinite(ee.frequencies)) est.push_back(fmt::format("frequencies {:.2g}", ee.frequencies));
-  if (std::isfinite(ee.deflections)) est.push_back(fmt::format("deflections {:.2g} of the largest", ee.deflections));
+  const auto& xp = r.extrapolated;
+  if (xp.frequencies_reported)
+    est.push_back(fmt::format("frequencies {:.2g} (extrapolated; the mesh's {:.2g})", xp.frequency_error, ee.frequencies));
+  else if (std::isfinite(ee.frequencies))
+    est.push_back(fmt::format("frequencies {:.2g}", ee.frequencies));
+  if (xp.deflections_reported)
+    est.push_back(fmt::format("deflections {:.2g} of the largest (extrapolated; the mesh's {:.2g})", xp.deflection_error,
+                              ee.deflections));
+  else if (std::isfinite(ee.deflections))
+    est.push_back(fmt::format("deflections {:.2g} of the largest", ee.deflections));
   if (!est.empty())
     std::cout << fmt::format("  estimated discretization error: {} (relative)\n", fmt::join(est, ", "));
-  const auto& xp = r.extrapolated;
-  if (!xp.empty()) {
+  if (xp.frequencies_reported || xp.deflections_reported) {
+    std::vector<std::string> what;
+    if (xp.frequencies_reported) what.push_back(fmt::format("frequencies (estimate {:.2g})", xp.frequency_error));
+    if (xp.deflections_reported) what.push_back(fmt::format("deflections (estimate {:.2g})", xp.deflection_error));
+    std::cout << fmt::format("  values reported: extrapolated {} from meshes {}: their estimate meets the tolerance "
+                             "{:.2g}, the mesh's own does not (the mesh's values below)\n",
+                             fmt::join(what, " and "), xp.meshes, sum.error_estimate.tolerance);
+    for (std::size_t i = 0; i < xp.mesh_frequencies_rad_s.size(); ++i)
+      std::cout << fmt::format("  mesh mode {:>3}  {:>16.8g} rad/s\n", i + 1, xp.mesh_frequencies_rad_s[i]);
+    for (const auto& d : xp.mesh_deflections) std::cout << "  mesh probe " << probe_line(scene, d) << "\n";
+  } else if (!xp.empty()) {
     std::cout << fmt::format("  Richardson extrapolation of meshes {} (order {:g} removed):\n", xp.meshes, xp.order);
     for (std::size_t i = 0; i < xp.frequencies_rad_s.size(); ++i)
       std::cout << fmt::format("  mode {:>3}  {:>16.8g} rad/s  estimated error {:.2g}\n", i + 1, xp.frequencies_rad_s[i],

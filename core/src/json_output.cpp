@@ -228,7 +228,20 @@ nlohmann::json to_json(const Scene& scene, const std::string& backend, const Dis
                          {"next_order", num(xp.next_order)},
                          {"deflection_next_order", num(xp.deflection_next_order)},
                          {"note", xp.note}};
+    if (xp.frequencies_reported) {
+      json mf = json::array();
+      for (double v : xp.mesh_frequencies_rad_s) mf.push_back(num(v));
+      j["extrapolated"]["mesh_frequencies_rad_s"] = mf;
+    }
+    if (xp.deflections_reported) {
+      json md = json::array();
+      for (const auto& d : xp.mesh_deflections) md.push_back(deflection(d));
+      j["extrapolated"]["mesh_deflections"] = md;
+    }
   }
+  // Which values answer: the mesh's own, or the extrapolation's (Extrapolation::*_reported).
+  j["values"] = {{"frequencies", xp.frequencies_reported ? "extrapolated" : "mesh"},
+                 {"deflections", xp.deflections_reported ? "extrapolated" : "mesh"}};
   if (!r.transient.empty()) j["transient"] = transient_json(scene, r.transient);
   if (!r.campbell.empty() || scene.rotor) j["campbell"] = campbell_json(r.campbell);
   json diag = json::object();

@@ -38,8 +38,22 @@ struct MeshSolve {
   const Result* result = nullptr;
 };
 
-/// An error estimate and what of it exceeds the scene's tolerance (one sentence per quantity).
+/// An error estimate and what of it exceeds the scene's tolerance (one sentence per quantity, each
+/// starting with the quantity's name and a colon: "frequencies:", "deflections:", "Campbell:").
 using Verdict = std::pair<ErrorEstimate, std::vector<std::string>>;
+
+/// The quantities a result answers with their extrapolated values (reported_values.cpp).
+struct ReportedValues {
+  bool frequencies = false, deflections = false;
+};
+/// Those whose mesh estimate `e` exceeds the tolerance and whose extrapolated estimate (`x`, from
+/// the meshes of `fine`'s estimate) meets it; deflections only where the result gives no stress
+/// resultants (judged with them, not extrapolated).
+ReportedValues extrapolated_answers(const Scene& scene, const Result& fine, const Extrapolation& x, const ErrorEstimate& e);
+/// The verdict's problems left once those quantities are answered by their extrapolated values.
+std::vector<std::string> problems_left(const std::vector<std::string>& problems, const ReportedValues& v);
+/// Puts the extrapolated values of those quantities into the result (r.extrapolated keeps the mesh's).
+void report_extrapolated(Result& r, const ReportedValues& v);
 
 /// The discretization error of `fine` (result.hpp, ErrorEstimate) from `coarse` and, where given,
 /// `coarser` (the next coarser mesh). With other_is_finer, `coarse` is in fact a finer mesh (the

@@ -5,7 +5,9 @@
 //   refine the default mesh to the tolerance,
 //   solve the request on the mesh kept,
 //   estimate the error (where the refinement did not),
-//   extrapolate, the time history (request.transient, by modal superposition),
+//   extrapolate (and, on the default path, answer with the extrapolated values where their own
+//   estimate meets the tolerance and the mesh's does not), the time history (request.transient,
+//   by modal superposition),
 //   and finish (nothing non-finite unflagged, timings).
 // Each step is a member function of SolvePipeline; the state they pass on is its members.
 #include "solve_internal.hpp"
@@ -65,12 +67,16 @@ class SolvePipeline {
   void estimate_error();
   void record_estimate();
   void extrapolate();
+  void choose_values();
   void transient();
   void finish();
 
   // Parts of the steps.
   RefinementWindow start_refinement();
   bool refinement_step(RefinementWindow& w, double& last_estimate, double& last_time);
+  std::optional<Extrapolation> window_extrapolation(const RefinementWindow& w) const;
+  bool extrapolation_answers(const RefinementWindow& w) const;
+  double extrapolation_factor(const RefinementWindow& w) const;
   void keep_refinement_solves(RefinementWindow& w);
   Result solve_light(const Scene& sc, const Discretization& m) const;
   void solve_into(const Scene& sc, const Discretization& m, Result& x) const;
@@ -121,8 +127,9 @@ Result SolvePipeline::run() {
         refine_mesh();
         solve_request();
         estimate_error();
-        record_estimate();
         extrapolate();
+        choose_values();
+        record_estimate();
         transient();
       }
     }
@@ -310,7 +317,7 @@ void SolvePipeline::refine_mesh() {
     RefinementWindow w = start_refinement();
     // How far the estimates are from what this machine does: later steps are predicted with it.
     double last_estimate = solver_.estimate(light_, final_mesh_, opt_).seconds, last_time = w.cur.summary.total_time_s;
-    for (int step = 0; step < 3 && !verdict_->second.empty(); ++step)
+    for (int step = 0; step < 3 && !verdict_->second.empty() && !extrapolation_answers(w); ++step)
       if (!refinement_step(w, last_estimate, last_time)) break;
     keep_refinement_solves(w);
     if (w.cur.summary.status != Status::Success && w.cur.summary.status != Status::NotConverged)
@@ -358,7 +365,11 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   // Rounding beyond the tolerance: a finer mesh would only make it worse.
   if (e.frequencies_solve > scene_.request.tolerance) return false;
   const double worst = std::max(std::isnan(e.frequencies) ? 0.0 : e.frequencies, std::isnan(e.deflections) ? 0.0 : e.deflections);
-  const double factor = std::clamp(1.25 * std::pow(worst / scene_.request.tolerance, 1.0 / coarse_->order), 1.5, 4.0);
+  // The mesh sized for its own estimate, or for the extrapolation's where that is the smaller step
+  // (its error falls at the order left after extrapolation).
+  double factor = 1.25 * std::pow(worst / scene_.request.tolerance, 1.0 / coarse_->order);
+  if (const double fx = extrapolation_factor(w); fx < factor) factor = fx;
+  factor = std::clamp(factor, 1.5, 4.0);
   const std::optional<Discretization> next = solver_.finer_mesh(scene_, final_mesh_, std::isfinite(factor) ? factor : 4.0);
   if (!next) return false;
   const ResourceEstimate ne = solver_.estimate(scene_, *next, opt_);
@@ -409,6 +420,45 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, ratio, &w.prev}, w.third);
   final_mesh_ = *next;
   return true;
+}
+
+/// Whether the window's extrapolation (its finest three meshes, and the fourth where there is one)
+/// answers what the finest mesh's estimate leaves over the tolerance: the refinement stops there.
+std::optional<Extrapolation> SolvePipeline::window_extrapolation(const RefinementWindow& w) const {
+  if (!w.third) return std::nullopt;
+  const ExtrapolationMesh fourth{w.r3 ? &*w.r3 : nullptr, w.ratio3};
+  return richardson_extrapolate(w.cur, {&w.prev, w.ratio_prev}, {&w.r2, w.third->ratio}, coarse_->order,
+                                coarse_->next_order, w.cur.summary.diagnostic("frequency_solve_error_bound"),
+                                w.r3 ? &fourth : nullptr);
+}
+
+bool SolvePipeline::extrapolation_answers(const RefinementWindow& w) const {
+  const std::optional<Extrapolation> x = window_extrapolation(w);
+  if (!x) return false;
+  const ReportedValues v = extrapolated_answers(scene_, w.cur, *x, verdict_->first);
+  return (v.frequencies || v.deflections) && problems_left(verdict_->second, v).empty();
+}
+
+/// The refinement factor at which the extrapolated values' estimate is predicted to meet the
+/// tolerance: 1.1 (e / tol)^(1/s), s the order assumed to remain after extrapolation; NaN where the
+/// window does not extrapolate everything over the tolerance.
+double SolvePipeline::extrapolation_factor(const RefinementWindow& w) const {
+  const std::optional<Extrapolation> x = window_extrapolation(w);
+  if (!x || !(x->next_order > coarse_->order)) return kNotMeasured;
+  const ErrorEstimate& e = verdict_->first;
+  const double tol = scene_.request.tolerance;
+  double worst = 0;
+  if (!(e.frequencies <= tol) && scene_.request.modes > 0) {
+    if (x->frequencies_rad_s.empty()) return kNotMeasured;
+    worst = std::max(worst, x->frequency_error);
+  }
+  if (!(e.deflections <= tol) && !scene_.request.probes.empty()) {
+    const bool forces = std::any_of(w.cur.deflections.begin(), w.cur.deflections.end(), [](const Deflection& d) { return d.has_forces; });
+    if (forces || x->deflections.empty()) return kNotMeasured;
+    worst = std::max(worst, x->deflection_error);
+  }
+  if (std::isfinite(e.campbell) && !(e.campbell <= tol)) return kNotMeasured;
+  return 1.1 * std::pow(worst / tol, 1.0 / x->next_order);
 }
 
 /// The refinement's coarser solves, kept for the extrapolation (three or four meshes).
@@ -526,6 +576,29 @@ void SolvePipeline::extrapolate() {
   }
   for (auto& w : estimate_warnings_) sum.warnings.push_back(std::move(w));
   sum.timings_s.error_estimate = estimate_time_;
+}
+
+/// On the default path (the default mesh refined to the tolerance), the extrapolated values answer
+/// where their own estimate meets the tolerance and the mesh's does not, and nothing else the
+/// estimate judges is left over it: the result reports them (its extrapolation keeps the mesh's),
+/// says so in the estimate's note, and the status follows their estimate.
+void SolvePipeline::choose_values() {
+  if (!opt_.refine_to_tolerance || !verdict_ || verdict_->second.empty() || result_.extrapolated.empty()) return;
+  const ReportedValues v = extrapolated_answers(scene_, result_, result_.extrapolated, verdict_->first);
+  if (!(v.frequencies || v.deflections)) return;
+  std::vector<std::string> left = problems_left(verdict_->second, v);
+  if (!left.empty()) return;
+  report_extrapolated(result_, v);
+  verdict_->second = std::move(left);
+  const Extrapolation& x = result_.extrapolated;
+  std::string what;
+  if (v.frequencies) what = fmt::format("frequencies (estimate {:.2g})", x.frequency_error);
+  if (v.deflections)
+    what += fmt::format("{}deflections (estimate {:.2g})", what.empty() ? "" : " and ", x.deflection_error);
+  verdict_->first.note = fmt::format("reported values: the Richardson extrapolation's {} of meshes {}, whose estimate "
+                                     "meets the tolerance {:.2g} where the mesh's own does not; ",
+                                     what, x.meshes, scene_.request.tolerance) +
+                         verdict_->first.note;
 }
 
 /// The time history on the mesh kept (transient/superposition.cpp): its failure is the

@@ -114,6 +114,13 @@ class Result:
         self.extrapolated_frequencies_rad_s = (
             np.array([_num(f) for f in x["frequencies_rad_s"]], dtype=float) if x.get("frequencies_rad_s") else None)
         self.extrapolated_frequency_error = _num(x.get("frequency_error"))
+        # Which values answer ("mesh" or "extrapolated", per quantity): on the default path the
+        # extrapolated ones where their estimate meets the tolerance and the mesh's does not; the
+        # mesh's own are then mesh_frequencies_rad_s (else None).
+        self.values = doc.get("values", {"frequencies": "mesh", "deflections": "mesh"})
+        self.mesh_frequencies_rad_s = (
+            np.array([_num(f) for f in x["mesh_frequencies_rad_s"]], dtype=float)
+            if x.get("mesh_frequencies_rad_s") else None)
         # The time history of [request.transient] (None where not asked: see as_dict["transient"]).
         tr = doc.get("transient")
         self.transient = tr

@@ -113,8 +113,11 @@ Discretization RfemSolver::default_mesh(const Scene& s) const {
   long nx = 10L * (m_max + 1), ny = 10L * (n_max + 1);
   nx = std::max<long>(nx, std::lround(std::min(1e6, std::ceil(a / b * static_cast<double>(ny) / 3.0))));
   ny = std::max<long>(ny, std::lround(std::min(1e6, std::ceil(b / a * static_cast<double>(nx) / 3.0))));
-  nx = std::clamp<long>(nx + nx % 2, 4, 2000);
-  ny = std::clamp<long>(ny + ny % 2, 4, 2000);
+  // Multiples of 8: the error estimate's halvings (H, 2H and the fourth mesh 4H) are then uniform
+  // coarsenings, which the Richardson extrapolation needs (50 x 40 halved twice gave 12 x 10: not
+  // extrapolated, and the default path refined to the mesh's own estimate instead).
+  nx = std::clamp<long>(nx + (8 - nx % 8) % 8, 8, 2000);
+  ny = std::clamp<long>(ny + (8 - ny % 8) % 8, 8, 2000);
   return {{static_cast<int>(nx), static_cast<int>(ny)}};
 }
 
@@ -161,6 +164,11 @@ std::optional<CoarserMesh> RfemSolver::coarser_mesh(const Scene& s, const Discre
 
 std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discretization& mesh, double factor) const {
   Discretization d;
+  // A plate mesh of multiples of 8 (default_mesh) grows by a whole factor: the refined mesh, the one
+  // before it and that one's halving are then uniform coarsenings of each other, which the
+  // extrapolation needs, and its counts stay multiples of 8.
+  const bool whole = s.is_plate() && std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n % 8 == 0; });
+  if (whole) factor = std::ceil(factor - 1e-9);
   for (int n : mesh.counts) {
     long m = std::lround(std::ceil(n * factor));
     m += m % 2;

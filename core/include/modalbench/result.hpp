@@ -168,6 +168,13 @@ struct Extrapolation {
   double next_order = kNotMeasured;       ///< s: the order assumed to remain (frequencies)
   double deflection_next_order = kNotMeasured;  ///< s for deflections: p (no gain assumed)
   std::string note;
+  /// Whether the result reports these values as its answer (Result::frequencies_rad_s,
+  /// Result::deflections): on the default path (a default mesh refined to the tolerance) where their
+  /// own estimate meets the tolerance and the mesh's does not. The mesh's own values are then kept
+  /// in mesh_frequencies_rad_s / mesh_deflections (else those stay empty).
+  bool frequencies_reported = false, deflections_reported = false;
+  std::vector<double> mesh_frequencies_rad_s;
+  std::vector<Deflection> mesh_deflections;
   bool empty() const { return frequencies_rad_s.empty() && deflections.empty(); }
 };
 
