@@ -114,6 +114,9 @@ class SolvePipeline {
   double last_full_s_ = 0;  ///< the plan's share for the whole request on the latest mesh
   void compare_time_with_plan();
   KeptSolves kept_;
+  /// The refinement's last solve, where the light scene is the whole request (no FRF, shapes or
+  /// time history): the request's solve on the mesh kept, not repeated.
+  std::optional<Result> kept_fine_;
 };
 
 Result SolvePipeline::run() {
@@ -324,6 +327,13 @@ void SolvePipeline::refine_mesh() {
       estimate_warnings_.push_back(fmt::format("a solve on mesh {} of the refinement was {}: {}", final_mesh_.spec(),
                                                to_string(w.cur.summary.status), w.cur.summary.message));
     estimate_time_ = seconds_since(tc);
+    const auto& rq = scene_.request;
+    if (!rq.frf && !rq.shapes && !rq.transient) {
+      estimate_time_ -= w.cur.summary.total_time_s;  // the request's own solve, not the estimate's
+      kept_fine_ = std::move(w.cur);
+      planned_s_ -= last_full_s_;  // the plan's whole request on the mesh kept is that solve
+      last_full_s_ = 0;
+    }
     // Provenance of the mesh and its estimate, not a doubt about them: said in the estimate's note.
     if (final_mesh_.spec() != mesh_.spec())
       refined_note_ = fmt::format("default mesh {} refined to {} to meet the tolerance {:.2g}", mesh_.spec(),
@@ -333,6 +343,7 @@ void SolvePipeline::refine_mesh() {
   } catch (const std::exception& e) {
     estimate_warnings_.push_back(std::string("refinement of the default mesh abandoned: ") + e.what());
     verdict_.reset();
+    kept_fine_.reset();
     final_mesh_ = mesh_;
   }
 }
@@ -480,7 +491,18 @@ void SolvePipeline::keep_refinement_solves(RefinementWindow& w) {
 void SolvePipeline::solve_request() {
   auto& sum = result_.summary;
   sum.mesh = final_mesh_.spec();
-  solve_into(scene_, final_mesh_, result_);
+  if (kept_fine_ && sum.status == Status::Success) {
+    // The refinement's last solve is this request's: taken with what the pipeline noted before it.
+    Result x = std::move(*kept_fine_);
+    kept_fine_.reset();
+    x.summary.method_requested = sum.method_requested;
+    for (const auto& [name, value] : sum.diagnostics) x.summary.set_diagnostic(name, value);
+    x.summary.warnings.insert(x.summary.warnings.begin(), sum.warnings.begin(), sum.warnings.end());
+    x.summary.mesh = sum.mesh;
+    result_ = std::move(x);
+  } else {
+    solve_into(scene_, final_mesh_, result_);
+  }
   if (!statics_refused_.empty())
     sum.warnings.push_back("not computed: static deflections (" + statics_refused_ +
                            "); the time history runs without the static correction");
