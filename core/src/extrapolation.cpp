@@ -25,11 +25,15 @@ double extrapolation_error(double D, double r, double r2, double p, double s) {
   return denom > 1e-3 * std::abs(c1) ? std::abs(D) * std::abs(c1) / denom : std::numeric_limits<double>::infinity();
 }
 
+/// How far the observed order may be from the formal one for the meshes to count as asymptotic.
+constexpr double kAsymptoticOrderTolerance = 0.2;
+
 /// R(h) and its error estimate for one quantity: q, qc, qcc, qccc on h, H = r h, 2H = r2 H and,
 /// where given (finite qccc), 4H = r3 2H.
 struct Extrapolated {
   double value = kNotMeasured, error = kNotMeasured;  // error absolute
   double remainder_order = kNotMeasured;              // the order R's sequence showed (four meshes)
+  bool order_confirmed = false;                       // it confirmed the next order: factor of safety 1.25
 };
 
 Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r, double r2, double r3, double p, double s,
@@ -55,12 +59,14 @@ Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r,
   }
   const double e1 = extrapolation_error(D1, r, r2, p, s_eff);
   const double e2 = extrapolation_error(D2, r2, r3, p, s_eff) / std::pow(r, s_eff);
-  x.error = std::max(kRoacheSafetyFactor * e1, kRoacheGuardFactor * e2);
+  // Roache's factor of safety 1.25 where the four meshes confirm the order assumed to remain (s > p:
+  // a gain the back-end states, observed within 20 %); 3 where it is assumed, not observed.
+  const bool confirmed = s > p * (1 + 1e-12) && std::isfinite(x.remainder_order) &&
+                         std::abs(x.remainder_order - s) <= kAsymptoticOrderTolerance * s;
+  x.error = std::max((confirmed ? kRoacheGuardFactor : kRoacheSafetyFactor) * e1, kRoacheGuardFactor * e2);
+  x.order_confirmed = confirmed;
   return x;
 }
-
-/// How far the observed order may be from the formal one for the meshes to count as asymptotic.
-constexpr double kAsymptoticOrderTolerance = 0.2;
 /// The largest relative difference between the two coarser meshes for them to count as resolving
 /// the mode: beyond it the next terms of the expansion are as large as the leading one, and three
 /// meshes can show the formal order by coincidence (mode 7 of the Lasecka beam on 16, 8 and 4
@@ -149,7 +155,7 @@ void extrapolate_frequencies(const Meshes& m, double next_order, double solve, E
   const double r = m.r, r2 = m.r2, p = m.p;
   double worst = 0;
   std::vector<std::string> pre_asymptotic;
-  std::vector<std::size_t> lower_remainder;
+  std::vector<std::size_t> lower_remainder, confirmed;
   for (std::size_t i = 0; i < f.size(); ++i) {
     if (f[i] == 0) {
       x.frequencies_rad_s.push_back(0.0);
@@ -166,6 +172,7 @@ void extrapolate_frequencies(const Meshes& m, double next_order, double solve, E
     });
     const Extrapolated e = extrapolate(f[i], c[i], cc[i], fccc, r, r2, m.r3, p, next_order, noise);
     if (std::isfinite(e.remainder_order) && e.remainder_order < next_order) lower_remainder.push_back(i + 1);
+    if (e.order_confirmed) confirmed.push_back(i + 1);
     double rel = e.error / std::abs(e.value);
     const double d1 = f[i] - c[i], d2 = c[i] - cc[i];
     const double po = std::abs(d1) > noise && std::abs(d2) > noise ? observed_order(d1, d2, r, r2, 0.25, 4 * p) : kNotMeasured;
@@ -191,6 +198,11 @@ void extrapolate_frequencies(const Meshes& m, double next_order, double solve, E
     why.push_back(fmt::format("modes {}: the extrapolated values of the four meshes converge below order {:g}, and "
                               "their estimates use the order observed",
                               fmt::join(lower_remainder, ", "), next_order));
+  if (!confirmed.empty())
+    why.push_back(fmt::format("modes {}: the four meshes confirm the order {:g} (observed within {:g} %), so their "
+                              "factor of safety is Roache's {:g} instead of {:g}",
+                              fmt::join(confirmed, ", "), next_order, 100 * kAsymptoticOrderTolerance,
+                              kRoacheGuardFactor, kRoacheSafetyFactor));
   if (!pre_asymptotic.empty())
     why.push_back(fmt::format("modes {} (observed orders): the three meshes are not yet asymptotic (an order more "
                               "than {:g} % from {:g}, or the two coarser meshes more than {:g} % apart), so their "

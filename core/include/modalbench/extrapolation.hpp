@@ -14,7 +14,8 @@
 // |q(h) - q(H)| |1 / (r^p - 1) - 1 / (r^po - 1)|: the leading order is known only that well.
 // With a fourth mesh 4H, R(2H) too: the order of R's own sequence is observed (and used where it
 // is below s), and the larger of that estimate and 1.25 times the one of R(H) carried to h is
-// reported (Roache's guard, as for the mesh's own estimate in result.hpp).
+// reported (Roache's guard, as for the mesh's own estimate in result.hpp); where that order
+// confirms s > p (within 20 %), the factor of safety of R(h)'s own estimate is 1.25 instead of 3.
 // s is the back-end's (CoarserMesh::next_order); deflections use s = p (a point load's h^2 log h
 // term is not removed by extrapolation, and with s = p its estimate still covers it), which makes
 // their estimate a conservative one.
