@@ -47,4 +47,9 @@ void print_campbell(const mb::Campbell& c, bool verbose) {
   }
   if (!c.unstable_spins.empty()) std::cout << "  unstable at spins: " << list(c.unstable_spins) << "\n";
   if (verbose && !c.note.empty()) std::cout << "  campbell: " << c.note << "\n";
+  if (!c.orbit_points_m.empty())
+    std::cout << fmt::format("  orbits: every root's v, w at {} points (--json){}\n", c.orbit_points_m.size(),
+                             verbose ? "; " + c.orbit_note : "");
+  else if (!c.orbit_note.empty())
+    std::cout << "  orbits: " << c.orbit_note << "\n";
 }

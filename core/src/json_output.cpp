@@ -17,7 +17,18 @@ nlohmann::json campbell_json(const Campbell& c) {
     for (double v : p.frequencies_rad_s) f.push_back(num(v));
     for (Whirl x : p.whirl) w.push_back(to_string(x));
     for (double v : p.growth_rates_1_s) g.push_back(num(v));
-    points.push_back({{"spin_rad_s", num(p.spin_rad_s)}, {"frequencies_rad_s", f}, {"whirl", w}, {"growth_rate_1_s", g}});
+    json point = {{"spin_rad_s", num(p.spin_rad_s)}, {"frequencies_rad_s", f}, {"whirl", w}, {"growth_rate_1_s", g}};
+    if (!p.orbits.empty()) {
+      json orbits = json::array();
+      for (const Orbit& o : p.orbits) {
+        json v = json::array(), wz = json::array();
+        for (const auto& z : o.v) v.push_back({num(z.real()), num(z.imag())});
+        for (const auto& z : o.w) wz.push_back({num(z.real()), num(z.imag())});
+        orbits.push_back({{"v", v}, {"w", wz}});
+      }
+      point["orbits"] = orbits;
+    }
+    points.push_back(point);
   }
   json fw = json::array(), bw = json::array(), un = json::array();
   for (double v : c.forward_criticals) fw.push_back(num(v));
@@ -28,7 +39,10 @@ nlohmann::json campbell_json(const Campbell& c) {
           {"critical_speeds", {{"forward", fw}, {"backward", bw}, {"note", c.criticals_note}}},
           {"unstable_spins_rad_s", un},
           {"max_backward_error", num(c.max_backward_error)},
-          {"units", "rad/s (spin, frequencies, critical speeds), 1/s (growth rates)"},
+          {"orbit_points_m", c.orbit_points_m},
+          {"orbit_note", c.orbit_note},
+          {"units", "rad/s (spin, frequencies, critical speeds), 1/s (growth rates); orbits: [re, im] of v and w "
+                    "at orbit_points_m, normalized"},
           {"note", c.note}};
 }
 

@@ -16,7 +16,7 @@ std::array<WhirlRoot, 2> rotating_frame_roots(double omega_v, double omega_w, do
   int i = 0;
   for (const C x : {(p + disc) / 2.0, (p - disc) / 2.0}) {  // x = -lambda^2
     const C lambda = std::sqrt(-x);                          // Re >= 0: the growing root of +-lambda
-    WhirlRoot r{std::abs(lambda.imag()), std::max(0.0, lambda.real()), spin > 0 ? Whirl::None : Whirl::Planar};
+    WhirlRoot r{std::abs(lambda.imag()), std::max(0.0, lambda.real()), spin > 0 ? Whirl::None : Whirl::Planar, {}};
     if (r.omega > 1e-13 * std::sqrt(std::abs(x)) && spin > 0) {
       // v'' - 2 Omega w' + b v = 0: W / V = (lambda^2 + b) / (2 Omega lambda); the orbit turns in the
       // spin's sense (v to w) where Im(V conj W) > 0, i.e. Im(W / V) < 0 (lambda with Im > 0).
@@ -34,13 +34,43 @@ CampbellPoint campbell_point(double spin, std::vector<WhirlRoot> roots, int k, b
   CampbellPoint p;
   p.spin_rad_s = spin;
   unstable = false;
+  const bool orbits = std::any_of(roots.begin(), roots.end(), [](const WhirlRoot& r) { return !r.orbit.v.empty(); });
   for (const WhirlRoot& r : roots) {
     p.frequencies_rad_s.push_back(r.omega);
     p.whirl.push_back(r.whirl);
     p.growth_rates_1_s.push_back(r.growth);
+    if (orbits) p.orbits.push_back(r.orbit);
     unstable = unstable || r.growth > 0;
   }
   return p;
+}
+
+void normalize(Orbit& o) {
+  // The point of the largest orbit (the first such); there v, or w where v is negligible, is made
+  // real and positive.
+  double top = 0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < o.v.size(); ++i)
+    if (const double a = std::norm(o.v[i]) + std::norm(o.w[i]); a > top * (1 + 1e-9)) {
+      top = a;
+      at = i;
+    }
+  if (!(top > 0)) return;
+  const std::complex<double> big = std::norm(o.v[at]) >= 1e-6 * top ? o.v[at] : o.w[at];
+  const std::complex<double> f = std::conj(big) / std::abs(big) / std::sqrt(top);
+  for (auto& c : o.v) c *= f;
+  for (auto& c : o.w) c *= f;
+}
+
+Orbit circular_orbit(const std::vector<double>& phi, Whirl sense) {
+  const std::complex<double> turn(0.0, sense == Whirl::Forward ? -1.0 : 1.0);
+  Orbit o;
+  for (double p : phi) {
+    o.v.push_back(p);
+    o.w.push_back(turn * p);
+  }
+  normalize(o);
+  return o;
 }
 
 }  // namespace modalbench

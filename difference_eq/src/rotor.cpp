@@ -42,8 +42,8 @@ std::vector<WhirlRoot> roots_at(const Scene& s, long R, MassModel mass, double s
       if (rotating) {
         for (const WhirlRoot& r : rotating_frame_roots(v[n], w[n], spin)) out.push_back(r);
       } else {
-        out.push_back({w[n], 0.0, Whirl::Backward});
-        out.push_back({w[n], 0.0, Whirl::Forward});
+        out.push_back({w[n], 0.0, Whirl::Backward, {}});
+        out.push_back({w[n], 0.0, Whirl::Forward, {}});
       }
     }
     std::vector<double> sorted;
@@ -107,6 +107,7 @@ Campbell rotor_campbell(const Scene& s, long R, MassModel mass, Summary& sum) {
                                        "whirl = spin at its own frequency, forward and backward"
                                      : "forward: where a rotating-frame frequency is 0 (either plane's frequency of a "
                                        "mode); backward critical speeds of an asymmetric shaft are not given";
+  if (s.request.shapes) c.orbit_note = "not given: difference_eq does not compute the chain's whirl orbits yet";
   c.note = fmt::format("regular chain of {} Hermite Euler-Bernoulli elements ({} mass){}: per mode shared by both "
                        "planes, (lambda^2 + omega_v^2 - Omega^2)(lambda^2 + omega_w^2 - Omega^2) + 4 Omega^2 lambda^2 = "
                        "0 in the rotating frame (the appendix's A3: 2 L_e and -K_e, the consistent translational "

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "modalbench/rotor_scene.hpp"
@@ -72,17 +73,32 @@ void tally(const LineAnalysis& la, Summary& sum) {
                      std::max(0.0, sum.diagnostic("count_evaluations")) + static_cast<double>(la.evaluations()));
 }
 
-/// The lowest k frequencies of one whirl direction (rad/s); a mode that does not reproduce on the
-/// second discretization is said in `problems`.
-std::vector<double> branch(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, const Whirling& w, int k,
-                           Summary& sum, std::string& problems) {
+/// One whirl direction's lowest frequencies (rad/s) and, where asked, each mode's planar shape w(x)
+/// at the shape points (the null vector of the line's dynamic stiffness, dtfm/src/shapes.cpp).
+struct Branch {
+  std::vector<double> omega;
+  std::vector<std::vector<double>> shape;
+};
+
+/// The lowest k modes of one whirl direction; a mode that does not reproduce on the second
+/// discretization is said in `problems`.
+Branch branch(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, const Whirling& w, int k, Summary& sum,
+              std::string& problems, const std::vector<std::array<double, 2>>& points = {}) {
   Line line(s, mo, ctl, w);
   const ModeList ml = line.la.modes(k);
-  tally(line.la, sum);
   if (!ml.count_consistent && problems.empty())
     problems = fmt::format("{} whirl at spin {:g} rad/s: {}", w.sense > 0 ? "forward" : "backward", w.spin,
                            ml.count_message);
-  return ml.omega_rad_s;
+  Branch b{ml.omega_rad_s, {}};
+  if (!points.empty() && !ml.omega_rad_s.empty())
+    for (const auto& m : line.la.mode_shapes(ml, points, {dofs::Uz}, {false, false, false}).values) b.shape.push_back(m.at(0));
+  tally(line.la, sum);
+  return b;
+}
+
+/// A root's orbit from its branch's shape (none where no shapes were asked).
+Orbit orbit_of(const Branch& b, std::size_t i, Whirl sense) {
+  return i < b.shape.size() ? circular_orbit(b.shape[i], sense) : Orbit{};
 }
 
 int count_below(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, const Whirling& w, double omega,
@@ -93,19 +109,21 @@ int count_below(const Scene& s, const ModelOptions& mo, const SolveControls& ctl
   return n;
 }
 
-/// The k lowest whirl roots at `spin`, in the scene's frame.
+/// The k lowest whirl roots at `spin`, in the scene's frame, with their orbits at `points` (if any).
 std::vector<WhirlRoot> roots_at(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, double spin, int k,
-                                Summary& sum, std::string& problems) {
+                                Summary& sum, std::string& problems, const std::vector<std::array<double, 2>>& points) {
   const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
   const Whirling fwd{+1, spin, false}, bwd{-1, spin, false};
-  std::vector<double> fw = branch(s, mo, ctl, fwd, k, sum, problems), bw = branch(s, mo, ctl, bwd, k, sum, problems);
+  Branch fw = branch(s, mo, ctl, fwd, k, sum, problems, points), bw = branch(s, mo, ctl, bwd, k, sum, problems, points);
   std::vector<WhirlRoot> out;
   auto collect = [&] {
     out.clear();
-    for (double b : bw) out.push_back({rotating ? b + spin : b, 0.0, Whirl::Backward});
-    for (double f : fw) {
-      const double d = rotating ? f - spin : f;
-      out.push_back({std::abs(d), 0.0, std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward});
+    for (std::size_t i = 0; i < bw.omega.size(); ++i)
+      out.push_back({rotating ? bw.omega[i] + spin : bw.omega[i], 0.0, Whirl::Backward, orbit_of(bw, i, Whirl::Backward)});
+    for (std::size_t i = 0; i < fw.omega.size(); ++i) {
+      const double f = fw.omega[i], d = rotating ? f - spin : f;
+      const Whirl sense = std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward;
+      out.push_back({std::abs(d), 0.0, sense, orbit_of(fw, i, sense == Whirl::None ? Whirl::Forward : sense)});
     }
     std::stable_sort(out.begin(), out.end(), [](const WhirlRoot& a, const WhirlRoot& b) { return a.omega < b.omega; });
   };
@@ -114,8 +132,8 @@ std::vector<WhirlRoot> roots_at(const Scene& s, const ModelOptions& mo, const So
     // A forward frequency near the spin is a low one in the rotating frame: every forward one up to
     // spin + (the k-th lowest so far) is taken.
     const int n = count_below(s, mo, ctl, fwd, spin + out[static_cast<std::size_t>(k - 1)].omega, sum);
-    if (n > static_cast<int>(fw.size())) {
-      fw = branch(s, mo, ctl, fwd, n, sum, problems);
+    if (n > static_cast<int>(fw.omega.size())) {
+      fw = branch(s, mo, ctl, fwd, n, sum, problems, points);
       collect();
     }
   }
@@ -130,7 +148,7 @@ std::vector<double> synchronous(const Scene& s, const ModelOptions& mo, const So
   const int below = count_below(s, mo, ctl, w, top, sum);
   const int far = count_below(s, mo, ctl, w, 100.0 * std::max(top, scale), sum);
   const int n = std::min(far, below + 1);
-  return n > 0 ? branch(s, mo, ctl, w, n, sum, problems) : std::vector<double>{};
+  return n > 0 ? branch(s, mo, ctl, w, n, sum, problems).omega : std::vector<double>{};
 }
 
 }  // namespace
@@ -150,13 +168,21 @@ Campbell rotor_campbell(const Scene& s, const ModelOptions& mo, const SolveContr
   const int k = s.request.modes;
   std::string problems;
   c.frame = to_string(s.rotor->frame);
+  // Orbits where [request.shapes] asks: an axisymmetric shaft's whirl is a circle of its line's shape.
+  std::vector<std::array<double, 2>> points;
+  if (s.request.shapes) {
+    points = s.shape_points();
+    for (const auto& p : points) c.orbit_points_m.push_back(p[0]);
+    c.orbit_note = "circles (w = -+ i v) of each whirl line's mode shape at its frequency: the null vector of the "
+                   "prism line's dynamic stiffness, the exact field between nodes";
+  }
   for (double spin : s.rotor->spin) {
     bool unstable = false;
-    c.points.push_back(campbell_point(spin, roots_at(s, mo, ctl, spin, k, sum, problems), k, unstable));
+    c.points.push_back(campbell_point(spin, roots_at(s, mo, ctl, spin, k, sum, problems, points), k, unstable));
     if (unstable) c.unstable_spins.push_back(spin);
   }
   const double top = s.rotor->spin.back();
-  const double scale = branch(s, mo, ctl, {+1, 0.0, false}, 1, sum, problems).at(0);
+  const double scale = branch(s, mo, ctl, {+1, 0.0, false}, 1, sum, problems).omega.at(0);
   c.forward_criticals = synchronous(s, mo, ctl, +1, top, scale, sum, problems);
   c.backward_criticals = synchronous(s, mo, ctl, -1, top, scale, sum, problems);
   c.criticals_note = "synchronous whirl per direction (rotary inertias rho I -+ rho I_p, J_t -+ J_p) on the prism line, "

@@ -28,6 +28,8 @@ namespace {
 struct Root {
   double omega = 0, growth = 0;
   Whirl whirl = Whirl::None;
+  int sense = 0;          ///< the whirl line it came from (axisymmetric shafts): +1 forward, -1 backward
+  double line_omega = 0;  ///< its frequency on that line (the stationary frame's), rad/s
 };
 
 /// The lowest k frequencies of one whirl line (rad/s).
@@ -53,10 +55,11 @@ std::vector<Root> axisymmetric_roots(const Scene& s, double spin, int k, Summary
   std::vector<Root> out;
   auto collect = [&] {
     out.clear();
-    for (double b : bw) out.push_back({rotating ? b + spin : b, 0.0, Whirl::Backward});
+    for (double b : bw) out.push_back({rotating ? b + spin : b, 0.0, Whirl::Backward, -1, b});
     for (double f : fw) {
       const double d = rotating ? f - spin : f;
-      out.push_back({std::abs(d), 0.0, std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward});
+      out.push_back({std::abs(d), 0.0, std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward,
+                     +1, f});
     }
     std::sort(out.begin(), out.end(), [](const Root& a, const Root& b) { return a.omega < b.omega; });
   };
@@ -125,6 +128,18 @@ Campbell rotor_campbell(const Scene& s, Summary& sum) {
   const int k = s.request.modes;
   const bool sym = axisymmetric_shaft(s);
   c.frame = to_string(s.rotor->frame);
+  // Orbits where [request.shapes] asks: an axisymmetric shaft's whirl is a circle of its line's shape.
+  std::vector<double> xs;
+  if (s.request.shapes) {
+    for (const auto& pt : s.shape_points()) xs.push_back(pt[0]);
+    if (sym) {
+      c.orbit_points_m = xs;
+      c.orbit_note = "circles (w = -+ i v) of each whirl line's mode shape at its frequency, by the beam's transfer "
+                     "matrices";
+    } else {
+      c.orbit_note = "not given: the asymmetric shaft's elliptic orbits are not computed by exact yet";
+    }
+  }
   for (double spin : s.rotor->spin) {
     CampbellPoint p;
     p.spin_rad_s = spin;
@@ -132,6 +147,9 @@ Campbell rotor_campbell(const Scene& s, Summary& sum) {
       p.frequencies_rad_s.push_back(r.omega);
       p.whirl.push_back(r.whirl);
       p.growth_rates_1_s.push_back(r.growth);
+      if (!c.orbit_points_m.empty())
+        p.orbits.push_back(circular_orbit(whirl_shape(s, {r.sense, spin, false}, r.line_omega, xs),
+                                          r.whirl == Whirl::None ? (r.sense > 0 ? Whirl::Forward : Whirl::Backward) : r.whirl));
     }
     if (std::any_of(p.growth_rates_1_s.begin(), p.growth_rates_1_s.end(), [](double g) { return g > 0; }))
       c.unstable_spins.push_back(spin);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "beam_attachments.hpp"
+#include "modalbench/numerics/line_mode.hpp"
 
 namespace modalbench::exact::detail {
 
@@ -67,6 +68,16 @@ BendingLine whirl_line(const Scene& s, const Whirling& w) {
     else at.gyro = {0.0, w.sense * m.Jx * w.spin * kr};
   }
   return line;
+}
+
+std::vector<double> whirl_shape(const Scene& s, const Whirling& w, double omega, const std::vector<double>& xs) {
+  BendingLine line = whirl_line(s, w);
+  const double L = s.geometry.length;
+  for (double x : xs) line.sys.nodes_at.push_back(x / L);
+  const LineMode mode(line.sys, omega * omega);
+  std::vector<double> disp;
+  for (double x : xs) disp.push_back(mode.state(x / L)[0] * L);  // the state [w_bar, phi, Q, M], w_bar = w / L
+  return disp;
 }
 
 }  // namespace modalbench::exact::detail

@@ -28,4 +28,8 @@ struct Whirling {
 /// no gyroscopic moment (only the discs do).
 BendingLine whirl_line(const Scene& s, const Whirling& w);
 
+/// The planar shape w(x) at `xs` of the whirl line's mode at `omega` (a root of whirl_line(s, w)):
+/// the line's null vector carried along it by its transfer matrices (LineMode, line_system.hpp).
+std::vector<double> whirl_shape(const Scene& s, const Whirling& w, double omega, const std::vector<double>& xs);
+
 }  // namespace modalbench::exact::detail

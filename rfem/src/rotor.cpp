@@ -2,6 +2,8 @@
 // Campbell diagram with its critical speeds.
 #include "rotor.hpp"
 
+#include "modalbench/whirl.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -99,12 +101,44 @@ std::string campbell_refusal(const Scene& s, const Model& model, const System& s
   return "";
 }
 
+namespace {
+
+/// An orbit given at the rigid elements' centres (ascending x), at the points xs: linear between the
+/// centres around each point (beyond the first or last centre, the line through the two nearest),
+/// normalized.
+Orbit orbit_at(const Model& model, const std::vector<std::complex<double>>& V, const std::vector<std::complex<double>>& W,
+               const std::vector<double>& xs) {
+  Orbit o;
+  const std::size_t n = model.elements.size();
+  for (double x : xs) {
+    if (n < 2) {
+      o.v.push_back(V.at(0));
+      o.w.push_back(W.at(0));
+      continue;
+    }
+    std::size_t i = 0;
+    while (i + 2 < n && model.elements[i + 1].centre.x() < x) ++i;
+    const double x0 = model.elements[i].centre.x(), x1 = model.elements[i + 1].centre.x(), t = (x - x0) / (x1 - x0);
+    o.v.push_back((1 - t) * V[i] + t * V[i + 1]);
+    o.w.push_back((1 - t) * W[i] + t * W[i + 1]);
+  }
+  normalize(o);
+  return o;
+}
+
+}  // namespace
+
 Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, Summary& sum) {
   const RotorMatrices rm = rotor_matrices(model, sys);
   const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
   const int k = s.request.modes;
   Campbell c;
   c.frame = to_string(s.rotor->frame);
+  if (s.request.shapes) {
+    for (const auto& p : s.shape_points()) c.orbit_points_m.push_back(p[0]);
+    c.orbit_note = "each root's eigenvector: v and w of the rigid elements (a pure tilt: the tilt axis), linear "
+                   "between the elements' centres";
+  }
   c.max_backward_error = 0;
   Eigen::SparseLU<SpMat> fixed;
   if (!rotating) {
@@ -131,6 +165,9 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
     p.frequencies_rad_s = w.omega;
     p.whirl = w.whirl;
     p.growth_rates_1_s = w.growth;
+    if (!c.orbit_points_m.empty())
+      for (std::size_t i = 0; i < w.omega.size(); ++i)
+        p.orbits.push_back(orbit_at(model, w.orbit_v[i], w.orbit_w[i], c.orbit_points_m));
     for (double be : w.backward_error) c.max_backward_error = std::max(c.max_backward_error, be);
     if (static_cast<int>(w.omega.size()) < k) ++short_spins;
     if (std::any_of(w.growth.begin(), w.growth.end(), [](double g) { return g > 0; })) c.unstable_spins.push_back(spin);

@@ -10,6 +10,7 @@
 //     frame's J_t phi'' - i J_p Omega phi' + k phi = 0 with phi = chi e^{i Omega t}).
 // ../shared/ROTORS.md 4 states the same per RFE; the signs here are re-derived for this code's axes.
 #include <Eigen/SparseLU>
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ std::string campbell_refusal(const Scene& s, const Model& model, const System& s
 struct WhirlRoots {
   std::vector<double> omega, growth, backward_error;
   std::vector<Whirl> whirl;
+  /// Per root, per rigid element: v and w of its orbit (where the translations vanish, the tilt
+  /// axis theta_z, -theta_y), unnormalized.
+  std::vector<std::vector<std::complex<double>>> orbit_v, orbit_w;
   /// The companion-form vectors [x; lambda x] of the roots, summed (real and imaginary parts): the
   /// next spin's Arnoldi starts from it (a warm start along a sweep); restarts taken.
   Eigen::VectorXd start;

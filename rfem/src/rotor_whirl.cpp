@@ -124,19 +124,23 @@ Whirl sense(const Orbits& o) {
   return fwd && bwd ? Whirl::Mixed : fwd ? Whirl::Forward : bwd ? Whirl::Backward : Whirl::Planar;
 }
 
-/// A repeated root's basis (columns of X) turned so that each vector's orbit-sense form
-/// sum_e Im(V conj W) is diagonal: the forward and backward circles of a pair at spin 0.
+/// A repeated root's basis (columns of X) turned so that the orbit-sense form sum_e Im(V conj W)
+/// is diagonal relative to the orbits' size sum_e |V|^2 + |W|^2 (a generalized Hermitian
+/// eigenproblem): the forward and backward circles of a pair at spin 0 (with the sense form alone,
+/// two planar modes of unequal size came out as ellipses).
 void diagonalize_sense(const Model& model, const System& sys, Eigen::MatrixXcd& X) {
   const Eigen::Index c = X.cols();
   std::vector<Orbits> o;
   for (Eigen::Index j = 0; j < c; ++j) o.push_back(orbits(model, sys, X.col(j)));
-  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(c, c);
+  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(c, c), G = Eigen::MatrixXcd::Zero(c, c);
   for (Eigen::Index i = 0; i < c; ++i)
     for (Eigen::Index j = 0; j < c; ++j)
-      for (std::size_t e = 0; e < o[0].V.size(); ++e)
+      for (std::size_t e = 0; e < o[0].V.size(); ++e) {
         H(i, j) += (o[j].V[e] * std::conj(o[i].W[e]) - std::conj(o[i].V[e]) * o[j].W[e]) / Cd(0, 2);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> es(H);
-  X = X * es.eigenvectors();
+        G(i, j) += std::conj(o[i].V[e]) * o[j].V[e] + std::conj(o[i].W[e]) * o[j].W[e];
+      }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXcd> es(H, G);
+  if (es.info() == Eigen::Success) X = X * es.eigenvectors();
 }
 
 double backward_error(const SpMat& M, const SpMat& C, const SpMat& K, Cd lambda, const Eigen::VectorXcd& x,
@@ -194,7 +198,10 @@ WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, co
       out.omega.push_back(std::abs(l.imag()) <= 1e-10 * std::abs(l) ? 0.0 : std::abs(l.imag()));
       out.growth.push_back(std::abs(l.real()) <= noise ? 0.0 : std::abs(l.real()));
       out.backward_error.push_back(be);
-      out.whirl.push_back(out.omega.back() == 0.0 ? Whirl::None : sense(orbits(model, sys, x)));
+      const Orbits o = orbits(model, sys, x);
+      out.whirl.push_back(out.omega.back() == 0.0 ? Whirl::None : sense(o));
+      out.orbit_v.push_back(o.V);
+      out.orbit_w.push_back(o.W);
     }
     i = j;
   }
@@ -209,6 +216,8 @@ WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, co
     sorted.growth.push_back(out.growth[i]);
     sorted.backward_error.push_back(out.backward_error[i]);
     sorted.whirl.push_back(out.whirl[i]);
+    sorted.orbit_v.push_back(std::move(out.orbit_v[i]));
+    sorted.orbit_w.push_back(std::move(out.orbit_w[i]));
   }
   return sorted;
 }

@@ -405,3 +405,54 @@ BOOST_AUTO_TEST_CASE(dtfm_and_exact_agree_on_a_stepped_rotor_with_a_disc) {
     }
   }
 }
+
+BOOST_AUTO_TEST_CASE(whirl_orbits_are_circles_of_the_closed_form_shapes) {
+  // The pinned Timoshenko shaft with [request.shapes] at 9 points: root (mode n, sense s) is the
+  // circle v = sin(n pi x / L) (normalized: |v|^2 + |w|^2 = 1 at its largest), w = -i v forward, +i v backward
+  // (turning from +y towards +z is forward). exact and dtfm to 1e-8; rfem's orbit is its rigid
+  // elements' v, w, linear between their centres: within the interpolation's h^2 / 8 |v''| plus
+  // ten times its frequency estimate.
+  Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_timoshenko_shaft.toml");
+  s.rotor->spin = {0.0, 1000.0, 3000.0};
+  s.request.shapes = ShapeRequest{};
+  s.request.shapes->nx = 9;
+  const double L = s.geometry.length;
+  for (const std::string backend : {"exact", "dtfm", "rfem"}) {
+    const Result r = solve(backend, s);
+    BOOST_TEST_REQUIRE(r.campbell.orbit_points_m.size() == 9u);
+    const double h = backend == "rfem" ? L / std::stod(r.summary.mesh) : 0.0;
+    for (const CampbellPoint& p : r.campbell.points) {
+      BOOST_TEST_REQUIRE(p.orbits.size() == p.frequencies_rad_s.size());
+      for (std::size_t i = 0; i < p.orbits.size(); ++i) {
+        const int n = static_cast<int>(i / 2) + 1;
+        const double k = n * kPi / L;
+        const double tol = backend == "rfem" ? h * h / 8 * k * k + 10 * allowed(backend, r) : 1e-8;
+        const std::complex<double> turn(0.0, p.whirl[i] == Whirl::Forward ? -1.0 : 1.0);
+        // The largest of |sin| over the points (n = 1: at L / 2; n = 2: at L / 4 and 3 L / 4).
+        double top = 0;
+        for (double x : r.campbell.orbit_points_m) top = std::max(top, std::abs(std::sin(k * x)));
+        // The normalization makes v real and positive where the orbit is largest: of two points
+        // alike (n = 2), either; the reference takes the sign v has at the first.
+        const Orbit& o = p.orbits[i];
+        double sign = 1;
+        for (std::size_t j = 0; j < 9; ++j)
+          if (std::abs(std::abs(std::sin(k * r.campbell.orbit_points_m[j])) - top) <= 1e-12) {
+            sign = o.v[j].real() >= 0 ? 1 : -1;
+            break;
+          }
+        for (std::size_t j = 0; j < 9; ++j) {
+          const double ref = sign * std::sin(k * r.campbell.orbit_points_m[j]) / top / std::sqrt(2.0);
+          BOOST_TEST_INFO(backend << " spin " << p.spin_rad_s << " root " << i << " point " << j);
+          // At spin 0 the pair's basis is any two circles: |v| and |v| = |w| only.
+          if (p.spin_rad_s == 0) {
+            BOOST_TEST(std::abs(std::abs(o.v[j]) - std::abs(ref)) <= tol);
+            BOOST_TEST(std::abs(std::abs(o.w[j]) - std::abs(o.v[j])) <= tol);
+            continue;
+          }
+          BOOST_TEST(std::abs(o.v[j] - ref) <= tol);
+          BOOST_TEST(std::abs(o.w[j] - turn * o.v[j]) <= tol);
+        }
+      }
+    }
+  }
+}

@@ -218,6 +218,14 @@ enum class Whirl { Forward, Backward, Mixed, Planar, None };
 std::string to_string(Whirl);  ///< forward, backward, mixed, planar, none
 
 /// The whirl of a spinning shaft at one spin speed (scene [rotor]), in the scene's frame.
+/// A whirl root's orbit at the points of [request.shapes] (Campbell::orbit_points_m): the lateral
+/// motion v(t) = Re(v e^{i omega t}), w(t) = Re(w e^{i omega t}) (times e^{growth t}), normalized so
+/// that the largest |v|^2 + |w|^2 is 1 and v there (w, where v vanishes) is real and positive. A
+/// forward circle has w = -i v (turning from +y towards +z, the spin's sense), a backward one w = +i v.
+struct Orbit {
+  std::vector<std::complex<double>> v, w;
+};
+
 struct CampbellPoint {
   double spin_rad_s = 0;
   /// The lowest request.modes whirl frequencies |Im lambda|, rad/s, ascending (each whirl mode once;
@@ -225,12 +233,15 @@ struct CampbellPoint {
   std::vector<double> frequencies_rad_s;
   std::vector<Whirl> whirl;               ///< per frequency
   std::vector<double> growth_rates_1_s;   ///< per frequency, Re lambda, 1/s (> 0: unstable)
+  std::vector<Orbit> orbits;              ///< per frequency, where [request.shapes] asks (else empty)
 };
 /// A Campbell diagram: whirl against spin, and the critical speeds (a whirl frequency, seen from the
 /// ground, equal to the spin), solved for, not read off the samples.
 struct Campbell {
   std::string frame;  ///< stationary | rotating
   std::vector<CampbellPoint> points;
+  std::vector<double> orbit_points_m;  ///< x of the orbits' points (the shape points), m; empty: no orbits
+  std::string orbit_note;              ///< how the orbits were found, or why they are not given
   /// Critical speeds, rad/s, ascending: every one up to the highest spin asked, and the next above.
   std::vector<double> forward_criticals, backward_criticals;
   std::string criticals_note;  ///< how they were found, or why a list is not given

@@ -17,7 +17,14 @@ namespace modalbench {
 struct WhirlRoot {
   double omega = 0, growth = 0;
   Whirl whirl = Whirl::None;
+  Orbit orbit;  ///< at the shape points, where asked (else empty)
 };
+
+/// The orbit of an axisymmetric shaft's whirl whose planar shape is `phi` at the points: a circle,
+/// w = -i v forward, +i v backward (normalized as Orbit says); `sense` Forward or Backward.
+Orbit circular_orbit(const std::vector<double>& phi, Whirl sense);
+/// Scales an orbit as Orbit says (the largest |v|^2 + |w|^2 is 1, v there real > 0).
+void normalize(Orbit& o);
 
 /// The mode's two roots in the rotating frame at spin Omega (at spin 0: two planar orbits).
 std::array<WhirlRoot, 2> rotating_frame_roots(double omega_v, double omega_w, double spin);
