@@ -224,7 +224,8 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   std::vector<std::string> est;
   const auto& xp = r.extrapolated;
   if (xp.frequencies_reported)
-    est.push_back(fmt::format("frequencies {:.2g} (extrapolated; the mesh's {:.2g})", xp.frequency_error, ee.frequencies));
+    est.push_back(
+        fmt::format("frequencies {:.2g} (extrapolated; the mesh's {:.2g})", xp.frequency_error, ee.frequencies));
   else if (std::isfinite(ee.frequencies))
     est.push_back(fmt::format("frequencies {:.2g}", ee.frequencies));
   if (xp.deflections_reported)

@@ -34,7 +34,12 @@ bool order_keeps_families(const Result& fine, const Extrapolation& x) {
 }
 }  // namespace
 
-ReportedValues extrapolated_answers(const Scene& scene, const Result& fine, const Extrapolation& x, const ErrorEstimate& e) {
+bool gives_forces(const Result& r) {
+  return std::any_of(r.deflections.begin(), r.deflections.end(), [](const Deflection& d) { return d.has_forces; });
+}
+
+ReportedValues extrapolated_answers(const Scene& scene, const Result& fine, const Extrapolation& x,
+                                    const ErrorEstimate& e) {
   ReportedValues v;
   const double tol = scene.request.tolerance;
   if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty() && !meets(e.frequencies, tol))
@@ -42,8 +47,7 @@ ReportedValues extrapolated_answers(const Scene& scene, const Result& fine, cons
                     order_keeps_families(fine, x);
   // Stress resultants are judged with the deflections (ErrorEstimate::deflections) but not
   // extrapolated: where the result gives them, the deflections stay the mesh's.
-  const bool forces = std::any_of(fine.deflections.begin(), fine.deflections.end(), [](const Deflection& d) { return d.has_forces; });
-  if (!scene.request.probes.empty() && !fine.deflections.empty() && !meets(e.deflections, tol) && !forces)
+  if (!scene.request.probes.empty() && !fine.deflections.empty() && !meets(e.deflections, tol) && !gives_forces(fine))
     v.deflections = x.deflections.size() == fine.deflections.size() && meets(x.deflection_error, tol);
   return v;
 }

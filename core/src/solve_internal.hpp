@@ -49,7 +49,10 @@ struct ReportedValues {
 /// Those whose mesh estimate `e` exceeds the tolerance and whose extrapolated estimate (`x`, from
 /// the meshes of `fine`'s estimate) meets it; deflections only where the result gives no stress
 /// resultants (judged with them, not extrapolated).
-ReportedValues extrapolated_answers(const Scene& scene, const Result& fine, const Extrapolation& x, const ErrorEstimate& e);
+ReportedValues extrapolated_answers(const Scene& scene, const Result& fine, const Extrapolation& x,
+                                    const ErrorEstimate& e);
+/// Whether a result gives stress resultants at its probes (judged with the deflections, not extrapolated).
+bool gives_forces(const Result& r);
 /// The verdict's problems left once those quantities are answered by their extrapolated values.
 std::vector<std::string> problems_left(const std::vector<std::string>& problems, const ReportedValues& v);
 /// Puts the extrapolated values of those quantities into the result (r.extrapolated keeps the mesh's).

@@ -77,13 +77,15 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   const ErrorEstimate& e = verdict_->first;
   // Rounding beyond the tolerance: a finer mesh would only make it worse.
   if (e.frequencies_solve > scene_.request.tolerance) return false;
-  const double worst = std::max(std::isnan(e.frequencies) ? 0.0 : e.frequencies, std::isnan(e.deflections) ? 0.0 : e.deflections);
+  const double worst =
+      std::max(std::isnan(e.frequencies) ? 0.0 : e.frequencies, std::isnan(e.deflections) ? 0.0 : e.deflections);
   // The mesh sized for its own estimate, or for the extrapolation's where that is the smaller step
   // (its error falls at the order left after extrapolation).
   double factor = 1.25 * std::pow(worst / scene_.request.tolerance, 1.0 / coarse_->order);
   if (const double fx = extrapolation_factor(w); fx < factor) factor = fx;
   factor = std::clamp(factor, 1.5, 4.0);
-  const std::optional<Discretization> next = solver_.finer_mesh(scene_, final_mesh_, std::isfinite(factor) ? factor : 4.0);
+  const std::optional<Discretization> next =
+      solver_.finer_mesh(scene_, final_mesh_, std::isfinite(factor) ? factor : 4.0);
   if (!next) return false;
   const ResourceEstimate ne = solver_.estimate(scene_, *next, opt_);
   // The estimates calibrated on the last solve, both ways once it is long enough to be measured
@@ -166,8 +168,7 @@ double SolvePipeline::extrapolation_factor(const RefinementWindow& w) const {
     worst = std::max(worst, x->frequency_error);
   }
   if (!(e.deflections <= tol) && !scene_.request.probes.empty()) {
-    const bool forces = std::any_of(w.cur.deflections.begin(), w.cur.deflections.end(), [](const Deflection& d) { return d.has_forces; });
-    if (forces || x->deflections.empty()) return kNotMeasured;
+    if (gives_forces(w.cur) || x->deflections.empty()) return kNotMeasured;
     worst = std::max(worst, x->deflection_error);
   }
   if (std::isfinite(e.campbell) && !(e.campbell <= tol)) return kNotMeasured;

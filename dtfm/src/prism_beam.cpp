@@ -227,9 +227,11 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
 
   std::string fields;
   for (int d : active) fields += (fields.empty() ? "" : ", ") + std::string(dof_name(d));
-  mdl.description = fmt::format("{}x{} prisms ({}; {} per prism: {}), {} layers, {} prisms", ny, nz,
-                                s.physics == Physics::Spatial ? "spatial" : s.physics == Physics::Lateral ? "lateral: x-z and x-y" : "plane x-z", active.size(), fields,
-                                to_string(opt.layers), eb ? "Euler-Bernoulli" : "Timoshenko");
+  const char* planes = s.physics == Physics::Spatial   ? "spatial"
+                       : s.physics == Physics::Lateral ? "lateral: x-z and x-y"
+                                                       : "plane x-z";
+  mdl.description = fmt::format("{}x{} prisms ({}; {} per prism: {}), {} layers, {} prisms", ny, nz, planes,
+                                active.size(), fields, to_string(opt.layers), eb ? "Euler-Bernoulli" : "Timoshenko");
   const double Iy = Bw * Hh * Hh * Hh / 12.0, Iz = Hh * Bw * Bw * Bw / 12.0;
   const double Imin = carries_xy(s.physics) ? std::min(Iy, Iz) : Iy;
   mdl.lambda_scale = std::pow(std::numbers::pi / L, 4) * E * Imin / (rho * Bw * Hh);
