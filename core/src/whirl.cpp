@@ -73,4 +73,36 @@ Orbit circular_orbit(const std::vector<double>& phi, Whirl sense) {
   return o;
 }
 
+std::vector<WhirlRoot> axisymmetric_whirl(double spin, bool rotating, int k,
+                                          const std::function<WhirlBranch(int sense, int n)>& branch,
+                                          const std::function<int(double omega)>& forward_below) {
+  WhirlBranch fw = branch(+1, k);
+  const WhirlBranch bw = branch(-1, k);
+  auto orbit = [](const WhirlBranch& b, std::size_t i, Whirl sense) {
+    return i < b.shape.size() ? circular_orbit(b.shape[i], sense) : Orbit{};
+  };
+  std::vector<WhirlRoot> out;
+  auto collect = [&] {
+    out.clear();
+    for (std::size_t i = 0; i < bw.omega.size(); ++i)
+      out.push_back({rotating ? bw.omega[i] + spin : bw.omega[i], 0.0, Whirl::Backward, orbit(bw, i, Whirl::Backward)});
+    for (std::size_t i = 0; i < fw.omega.size(); ++i) {
+      const double f = fw.omega[i], d = rotating ? f - spin : f;
+      const Whirl sense = std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward;
+      out.push_back({std::abs(d), 0.0, sense, orbit(fw, i, sense == Whirl::None ? Whirl::Forward : sense)});
+    }
+    std::stable_sort(out.begin(), out.end(), [](const WhirlRoot& a, const WhirlRoot& b) { return a.omega < b.omega; });
+  };
+  collect();
+  if (rotating && static_cast<int>(out.size()) >= k) {
+    // A forward frequency near the spin is a low one in the rotating frame.
+    const int n = forward_below(spin + out[static_cast<std::size_t>(k - 1)].omega);
+    if (n > static_cast<int>(fw.omega.size())) {
+      fw = branch(+1, n);
+      collect();
+    }
+  }
+  return out;
+}
+
 }  // namespace modalbench

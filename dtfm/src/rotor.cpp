@@ -73,32 +73,21 @@ void tally(const LineAnalysis& la, Summary& sum) {
                      std::max(0.0, sum.diagnostic("count_evaluations")) + static_cast<double>(la.evaluations()));
 }
 
-/// One whirl direction's lowest frequencies (rad/s) and, where asked, each mode's planar shape w(x)
-/// at the shape points (the null vector of the line's dynamic stiffness, dtfm/src/shapes.cpp).
-struct Branch {
-  std::vector<double> omega;
-  std::vector<std::vector<double>> shape;
-};
-
-/// The lowest k modes of one whirl direction; a mode that does not reproduce on the second
-/// discretization is said in `problems`.
-Branch branch(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, const Whirling& w, int k, Summary& sum,
-              std::string& problems, const std::vector<std::array<double, 2>>& points = {}) {
+/// The lowest k modes of one whirl direction (rad/s) and, where `points` are given, each mode's
+/// planar shape w(x) there (the null vector of the line's dynamic stiffness, dtfm/src/shapes.cpp);
+/// a mode that does not reproduce on the second discretization is said in `problems`.
+WhirlBranch branch(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, const Whirling& w, int k,
+                   Summary& sum, std::string& problems, const std::vector<std::array<double, 2>>& points = {}) {
   Line line(s, mo, ctl, w);
   const ModeList ml = line.la.modes(k);
   if (!ml.count_consistent && problems.empty())
     problems = fmt::format("{} whirl at spin {:g} rad/s: {}", w.sense > 0 ? "forward" : "backward", w.spin,
                            ml.count_message);
-  Branch b{ml.omega_rad_s, {}};
+  WhirlBranch b{ml.omega_rad_s, {}};
   if (!points.empty() && !ml.omega_rad_s.empty())
     for (const auto& m : line.la.mode_shapes(ml, points, {dofs::Uz}, {false, false, false}).values) b.shape.push_back(m.at(0));
   tally(line.la, sum);
   return b;
-}
-
-/// A root's orbit from its branch's shape (none where no shapes were asked).
-Orbit orbit_of(const Branch& b, std::size_t i, Whirl sense) {
-  return i < b.shape.size() ? circular_orbit(b.shape[i], sense) : Orbit{};
 }
 
 int count_below(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, const Whirling& w, double omega,
@@ -109,35 +98,13 @@ int count_below(const Scene& s, const ModelOptions& mo, const SolveControls& ctl
   return n;
 }
 
-/// The k lowest whirl roots at `spin`, in the scene's frame, with their orbits at `points` (if any).
+/// The whirl roots at `spin`, in the scene's frame, with their orbits at `points` (if any).
 std::vector<WhirlRoot> roots_at(const Scene& s, const ModelOptions& mo, const SolveControls& ctl, double spin, int k,
                                 Summary& sum, std::string& problems, const std::vector<std::array<double, 2>>& points) {
-  const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
-  const Whirling fwd{+1, spin, false}, bwd{-1, spin, false};
-  Branch fw = branch(s, mo, ctl, fwd, k, sum, problems, points), bw = branch(s, mo, ctl, bwd, k, sum, problems, points);
-  std::vector<WhirlRoot> out;
-  auto collect = [&] {
-    out.clear();
-    for (std::size_t i = 0; i < bw.omega.size(); ++i)
-      out.push_back({rotating ? bw.omega[i] + spin : bw.omega[i], 0.0, Whirl::Backward, orbit_of(bw, i, Whirl::Backward)});
-    for (std::size_t i = 0; i < fw.omega.size(); ++i) {
-      const double f = fw.omega[i], d = rotating ? f - spin : f;
-      const Whirl sense = std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward;
-      out.push_back({std::abs(d), 0.0, sense, orbit_of(fw, i, sense == Whirl::None ? Whirl::Forward : sense)});
-    }
-    std::stable_sort(out.begin(), out.end(), [](const WhirlRoot& a, const WhirlRoot& b) { return a.omega < b.omega; });
-  };
-  collect();
-  if (rotating && static_cast<int>(out.size()) >= k) {
-    // A forward frequency near the spin is a low one in the rotating frame: every forward one up to
-    // spin + (the k-th lowest so far) is taken.
-    const int n = count_below(s, mo, ctl, fwd, spin + out[static_cast<std::size_t>(k - 1)].omega, sum);
-    if (n > static_cast<int>(fw.omega.size())) {
-      fw = branch(s, mo, ctl, fwd, n, sum, problems, points);
-      collect();
-    }
-  }
-  return out;
+  return axisymmetric_whirl(
+      spin, s.rotor->frame == Rotor::Frame::Rotating, k,
+      [&](int sense, int n) { return branch(s, mo, ctl, {sense, spin, false}, n, sum, problems, points); },
+      [&](double omega) { return count_below(s, mo, ctl, {+1, spin, false}, omega, sum); });
 }
 
 /// Critical speeds of one whirl direction: every one up to `top` and the next above (where the

@@ -25,22 +25,17 @@ namespace modalbench::exact::detail {
 
 namespace {
 
-struct Root {
-  double omega = 0, growth = 0;
-  Whirl whirl = Whirl::None;
-  int sense = 0;          ///< the whirl line it came from (axisymmetric shafts): +1 forward, -1 backward
-  double line_omega = 0;  ///< its frequency on that line (the stationary frame's), rad/s
-};
-
-/// The lowest k frequencies of one whirl line (rad/s).
-std::vector<double> branch(const Scene& s, const Whirling& w, int k, Summary& sum) {
+/// The lowest k frequencies of one whirl line (rad/s) and, at `xs` (if any), each one's planar shape.
+WhirlBranch branch(const Scene& s, const Whirling& w, int k, Summary& sum, const std::vector<double>& xs = {}) {
   const BendingLine line = whirl_line(s, w);
   SliceStats st;
   const LineSpectrum spec = lowest_eigenvalues(line.sys, k, 1.0 / line.lam_to_Omega2, &st);
   sum.set_diagnostic("count_evaluations",
                      std::max(0.0, sum.diagnostic("count_evaluations")) + static_cast<double>(st.count_evaluations));
-  std::vector<double> out;
-  for (double lam : spec.lambdas) out.push_back(std::sqrt(std::max(lam, 0.0)));
+  WhirlBranch out;
+  for (double lam : spec.lambdas) out.omega.push_back(std::sqrt(std::max(lam, 0.0)));
+  if (!xs.empty())
+    for (double omega : out.omega) out.shape.push_back(whirl_shape(s, w, omega, xs));
   return out;
 }
 
@@ -48,54 +43,30 @@ int count_below(const Scene& s, const Whirling& w, double omega) {
   return modalbench::count_below(whirl_line(s, w).sys, omega * omega);
 }
 
-/// The k lowest whirl roots of an axisymmetric shaft at `spin`, in the scene's frame.
-std::vector<Root> axisymmetric_roots(const Scene& s, double spin, int k, Summary& sum) {
-  const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
-  std::vector<double> fw = branch(s, {+1, spin, false}, k, sum), bw = branch(s, {-1, spin, false}, k, sum);
-  std::vector<Root> out;
-  auto collect = [&] {
-    out.clear();
-    for (double b : bw) out.push_back({rotating ? b + spin : b, 0.0, Whirl::Backward, -1, b});
-    for (double f : fw) {
-      const double d = rotating ? f - spin : f;
-      out.push_back({std::abs(d), 0.0, std::abs(d) <= 1e-13 * f ? Whirl::None : d > 0 ? Whirl::Forward : Whirl::Backward,
-                     +1, f});
-    }
-    std::sort(out.begin(), out.end(), [](const Root& a, const Root& b) { return a.omega < b.omega; });
-  };
-  collect();
-  if (rotating) {
-    // A forward frequency near the spin is a low one in the rotating frame: every forward one up to
-    // spin + (the k-th lowest so far) is taken.
-    const double bound = spin + out[static_cast<std::size_t>(k - 1)].omega;
-    const int n = count_below(s, {+1, spin, false}, bound);
-    if (n > static_cast<int>(fw.size())) {
-      fw = branch(s, {+1, spin, false}, n, sum);
-      collect();
-    }
-  }
-  out.resize(static_cast<std::size_t>(k));
-  return out;
+/// The whirl roots of an axisymmetric shaft at `spin`, in the scene's frame, with their orbits at
+/// `xs` (if any).
+std::vector<WhirlRoot> axisymmetric_roots(const Scene& s, double spin, int k, Summary& sum,
+                                          const std::vector<double>& xs) {
+  return axisymmetric_whirl(
+      spin, s.rotor->frame == Rotor::Frame::Rotating, k,
+      [&](int sense, int n) { return branch(s, {sense, spin, false}, n, sum, xs); },
+      [&](double omega) { return count_below(s, {+1, spin, false}, omega); });
 }
 
 /// The k lowest roots of the asymmetric shaft (rotating frame) at `spin`.
-std::vector<Root> asymmetric_roots(const Scene& s, double spin, int k, Summary& sum) {
+std::vector<WhirlRoot> asymmetric_roots(const Scene& s, double spin, int k, Summary& sum) {
   const EndSprings l{s.x0.translational, s.x0.rotational}, r{s.xL.translational, s.xL.rotational};
   for (int kk = k;; kk *= 2) {
     const Frequencies fz = beam_bending_frequencies(bending_xz(s), l, r, kk), fy = beam_bending_frequencies(bending_xy(s), l, r, kk);
     sum.set_diagnostic("count_evaluations", std::max(0.0, sum.diagnostic("count_evaluations")) +
                                                 static_cast<double>(fz.count_evaluations + fy.count_evaluations));
-    std::vector<Root> out;
+    std::vector<WhirlRoot> out;
     for (int n = 0; n < kk; ++n)
-      for (const WhirlRoot& w : rotating_frame_roots(fy.omega_rad_s[n], fz.omega_rad_s[n], spin))
-        out.push_back({w.omega, w.growth, w.whirl});
-    std::sort(out.begin(), out.end(), [](const Root& a, const Root& b) { return a.omega < b.omega; });
+      for (const WhirlRoot& w : rotating_frame_roots(fy.omega_rad_s[n], fz.omega_rad_s[n], spin)) out.push_back(w);
+    std::sort(out.begin(), out.end(), [](const WhirlRoot& a, const WhirlRoot& b) { return a.omega < b.omega; });
     // Mode n's roots are at least min(omega_n) - spin: beyond the k-th root, no later mode reaches.
     const double next = std::min(fz.omega_rad_s.back(), fy.omega_rad_s.back());
-    if (next - spin > out[static_cast<std::size_t>(k - 1)].omega || kk >= (1 << 16)) {
-      out.resize(static_cast<std::size_t>(k));
-      return out;
-    }
+    if (next - spin > out[static_cast<std::size_t>(k - 1)].omega || kk >= (1 << 16)) return out;
   }
 }
 
@@ -106,7 +77,7 @@ std::vector<double> synchronous(const Scene& s, int sense, double top, double sc
   const int below = count_below(s, w, top);
   const int far = count_below(s, w, 100.0 * std::max(top, scale));
   const int n = std::min(far, below + 1);
-  return n > 0 ? branch(s, w, n, sum) : std::vector<double>{};
+  return n > 0 ? branch(s, w, n, sum).omega : std::vector<double>{};
 }
 
 }  // namespace
@@ -141,23 +112,15 @@ Campbell rotor_campbell(const Scene& s, Summary& sum) {
     }
   }
   for (double spin : s.rotor->spin) {
-    CampbellPoint p;
-    p.spin_rad_s = spin;
-    for (const Root& r : sym ? axisymmetric_roots(s, spin, k, sum) : asymmetric_roots(s, spin, k, sum)) {
-      p.frequencies_rad_s.push_back(r.omega);
-      p.whirl.push_back(r.whirl);
-      p.growth_rates_1_s.push_back(r.growth);
-      if (!c.orbit_points_m.empty())
-        p.orbits.push_back(circular_orbit(whirl_shape(s, {r.sense, spin, false}, r.line_omega, xs),
-                                          r.whirl == Whirl::None ? (r.sense > 0 ? Whirl::Forward : Whirl::Backward) : r.whirl));
-    }
-    if (std::any_of(p.growth_rates_1_s.begin(), p.growth_rates_1_s.end(), [](double g) { return g > 0; }))
-      c.unstable_spins.push_back(spin);
-    c.points.push_back(std::move(p));
+    bool unstable = false;
+    c.points.push_back(campbell_point(
+        spin, sym ? axisymmetric_roots(s, spin, k, sum, c.orbit_points_m) : asymmetric_roots(s, spin, k, sum), k,
+        unstable));
+    if (unstable) c.unstable_spins.push_back(spin);
   }
   const double top = s.rotor->spin.back();
   if (sym) {
-    const double scale = branch(s, {+1, 0.0, false}, 1, sum)[0];
+    const double scale = branch(s, {+1, 0.0, false}, 1, sum).omega.at(0);
     c.forward_criticals = synchronous(s, +1, top, scale, sum);
     c.backward_criticals = synchronous(s, -1, top, scale, sum);
     c.criticals_note = "synchronous whirl per direction (rotary inertias rho I -+ rho I_p, J_t -+ J_p), bisected on "
