@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
         const Result r = b.solve(s, b.default_mesh(s), o);
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const bool x = r.extrapolated.frequencies_reported;
-        const double est = x ? r.extrapolated.frequency_error : r.summary.error_estimate.frequencies;
+        const double est = r.frequency_estimate();
         const double err = true_error(s, ref, r);
         fmt::print("{:<9.0e} {:<14} {:<14} {:<10} {:<13} {:>10.2g} {:>10.2g} {:>9.3g}{}\n", tol, name,
                    to_string(r.summary.status), r.summary.mesh, x ? "extrapolated" : "mesh", est, err, t,

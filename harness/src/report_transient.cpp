@@ -63,7 +63,7 @@ std::vector<std::string> row_of(const TransientRun& r) {
           err_str(t.error_estimate),
           t.moment_peaks.empty() ? "—" : fmt::format("{:.6g}", t.moment_peaks[0].w),
           t.moments.empty() ? "—" : err_str(t.moment_error_estimate),
-          err_str(x.summary.error_estimate.frequencies),
+          err_str(x.frequency_estimate()),
           to_string(x.summary.status),
           secs_str(x.summary.total_time_s)};
 }

@@ -193,7 +193,7 @@ StabilityRow judge(const StabilityCase& c, const std::string& backend, const Dis
   // A success claims its numbers to its own error estimate (or, without one, to the tolerance):
   // beyond that, and beyond the exact reference's own accuracy, it is wrong without a flag.
   if (r.summary.status == Status::Success && r.summary.converges_to_scene_theory && std::isfinite(row.max_error_vs_exact)) {
-    const double est = r.summary.error_estimate.frequencies;
+    const double est = r.frequency_estimate();  // of the values reported (mesh or extrapolated)
     const double claimed = std::isfinite(est) ? est : c.scene.request.tolerance;
     if (row.max_error_vs_exact > claimed + 1e-9)
       bad.push_back(fmt::format("error {:.2g} against exact beyond its own {} {:.2g}", row.max_error_vs_exact,

@@ -322,6 +322,11 @@ struct Result {
   Summary summary;
 
   bool ok() const { return summary.status == Status::Success; }
+  /// The estimate of the frequencies reported: the extrapolation's where they are its values
+  /// (Extrapolation::frequencies_reported), else the mesh's (summary.error_estimate.frequencies).
+  double frequency_estimate() const {
+    return extrapolated.frequencies_reported ? extrapolated.frequency_error : summary.error_estimate.frequencies;
+  }
 };
 
 }  // namespace modalbench
