@@ -63,7 +63,7 @@ std::vector<std::string> row_of(const TransientRun& r) {
           err_str(t.error_estimate),
           t.moment_peaks.empty() ? "—" : fmt::format("{:.6g}", t.moment_peaks[0].w),
           t.moments.empty() ? "—" : err_str(t.moment_error_estimate),
-          err_str(x.frequency_estimate()),
+          err_str(x.summary.error_estimate.frequencies),
           to_string(x.summary.status),
           secs_str(x.summary.total_time_s)};
 }
@@ -119,7 +119,8 @@ void write_transient(Doc& doc, const SceneComparison& c, Context& ctx, const std
       "modes' static share added from the statics, and the modes doubled from 12 until the truncation estimate meets "
       "the tolerance (the moments' estimate too, where the back-end's modes carry moments). Peaks are located on the "
       "modes' closed forms. Peaks at {}; the frequency estimate is the mesh's own (its discretization error, which "
-      "the truncation estimates do not include).",
+      "the truncation estimates do not include: the histories superpose the mesh's modes, also where the default "
+      "solve reports extrapolated frequencies).",
       c.transients.front().result.transient.load.empty() ? to_string(t.load)
                                                          : c.transients.front().result.transient.load,
       damping_str(t), c.scene.request.tolerance, at));
