@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "modalbench/harness/comparison.hpp"
 #include "modalbench/registry.hpp"
 #include "modalbench/solver.hpp"
 
@@ -24,10 +25,8 @@ using namespace modalbench;
 int main(int argc, char** argv) {
   const std::string filter = argc > 1 ? argv[1] : "";
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(MODALBENCH_SCENES_DIR))
-    if (e.path().extension() == ".toml" && e.path().filename().string().find(filter) != std::string::npos)
-      files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  for (const std::string& f : scene_files(MODALBENCH_SCENES_DIR))  // sorted
+    if (std::filesystem::path(f).filename().string().find(filter) != std::string::npos) files.push_back(f);
   const Registry reg = make_default_registry();
   fmt::print("{:<30} {:<14} {:<16} {:>10} {:>9} {:>10} {:>10} {:>11}\n", "scene", "back-end", "status", "mesh kept",
              "time [s]", "first est.", "plan [s]", "plan / time");

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "modalbench/harness/comparison.hpp"
 #include "modalbench/registry.hpp"
 #include "modalbench/rotor_scene.hpp"
 #include "modalbench/solver.hpp"
@@ -69,10 +70,8 @@ double deflection_error(const Result& r, const Result& ref) {
 int main(int argc, char** argv) {
   const std::string filter = argc > 1 ? argv[1] : "";
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(MODALBENCH_SCENES_DIR))
-    if (e.path().extension() == ".toml" && e.path().filename().string().find(filter) != std::string::npos)
-      files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  for (const std::string& f : scene_files(MODALBENCH_SCENES_DIR))  // sorted
+    if (std::filesystem::path(f).filename().string().find(filter) != std::string::npos) files.push_back(f);
   const Registry reg = make_default_registry();
   fmt::print("{:<28} {:<14} {:<12} {:<15} {:>10} {:>10} {:>8}\n", "scene", "back-end", "quantity", "mesh kept", "estimate",
              "true", "ratio");

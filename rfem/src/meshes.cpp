@@ -1,0 +1,123 @@
+// rfem's meshes (rfem.hpp): the default mesh from the geometry and the modes, the ladder, the
+// stress meshes, and the error estimate's coarser and finer meshes.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "modalbench/rfem/rfem.hpp"
+
+namespace modalbench::rfem {
+
+namespace {
+
+/// At least n elements and one cell per gap between the beam's features (ends, steps, supports
+/// between the ends, point masses), so that no two of them act on one rigid element (a support
+/// 1 mm from a clamped end on the end's element: every mesh of the family clamped the same element
+/// twice and converged, to 1e-9 by its estimate, to a span 1.6e-3 short in frequency); then the
+/// smallest count in [that, 2 that) whose element centres or cell boundaries (x = j L / (2 n'))
+/// hold every feature (halving then keeps most of them there), or that count where none does.
+/// Features closer than 2^-20 L share a cell (the estimate's coarser meshes then say so).
+int beam_mesh_on_features(const Scene& s, int n) {
+  std::vector<double> at;
+  for (std::size_t i = 1; i < s.segments.size(); ++i) at.push_back(s.segments[i].x_from / s.geometry.length);
+  for (const PointSupport& p : s.point_supports) at.push_back(p.x / s.geometry.length);
+  for (const PointMass& p : s.masses) at.push_back(p.x / s.geometry.length);
+  if (at.empty()) return n;
+  std::vector<double> all = at;
+  all.insert(all.end(), {0.0, 1.0});
+  std::sort(all.begin(), all.end());
+  double gap = 1.0;
+  for (std::size_t i = 0; i + 1 < all.size(); ++i)
+    if (all[i + 1] - all[i] > 1e-12) gap = std::min(gap, all[i + 1] - all[i]);
+  const int lo = std::max(n, std::min(1 << 20, static_cast<int>(std::ceil(1.0 / gap - 1e-9))));
+  for (int m = lo + lo % 2; m < 2 * lo; m += 2) {
+    bool all_on = true;
+    for (double t : at) all_on = all_on && std::abs(t * 2 * m - std::round(t * 2 * m)) <= 1e-9 * 2 * m;
+    if (all_on) return m;
+  }
+  return lo;
+}
+
+}  // namespace
+
+Discretization RfemSolver::default_mesh(const Scene& s) const {
+  const int k = std::max(1, s.request.modes);
+  if (s.is_beam()) {
+    // About 32 segments per half-wave of the highest requested mode (second order: ~1e-3).
+    int n = 128;
+    while (n < 32L * (k + 1) && n < (1 << 17)) n *= 2;
+    return {{beam_mesh_on_features(s, n)}};
+  }
+  // Half-waves of the first k modes of the plate (simply supported pattern), ~10 fragments per
+  // half-wave in each direction, and cells no more elongated than 3 : 1.
+  const double a = s.geometry.length, b = s.geometry.width;
+  const auto [m_max, n_max] = plate_half_waves(a, b, k);
+  long nx = 10L * (m_max + 1), ny = 10L * (n_max + 1);
+  nx = std::max<long>(nx, std::lround(std::min(1e6, std::ceil(a / b * static_cast<double>(ny) / 3.0))));
+  ny = std::max<long>(ny, std::lround(std::min(1e6, std::ceil(b / a * static_cast<double>(nx) / 3.0))));
+  // Multiples of 8: the error estimate's halvings (H, 2H and the fourth mesh 4H) are then uniform
+  // coarsenings, which the Richardson extrapolation needs (50 x 40 halved twice gave 12 x 10: not
+  // extrapolated, and the default path refined to the mesh's own estimate instead).
+  nx = std::clamp<long>(nx + (8 - nx % 8) % 8, 8, 2000);
+  ny = std::clamp<long>(ny + (8 - ny % 8) % 8, 8, 2000);
+  return {{static_cast<int>(nx), static_cast<int>(ny)}};
+}
+
+std::vector<Discretization> RfemSolver::mesh_ladder(const Scene& s) const {
+  std::vector<Discretization> v;
+  if (s.is_beam()) {
+    // Steps, supports and masses on element centres or cell boundaries, as the default mesh: off
+    // them a step's cell changes with every mesh and the errors fall unevenly (a stepped shaft on
+    // 8 ... 256: ratios 2.2 to 7.3 per halving, and no gain from Richardson). Doubling keeps them there.
+    const int n0 = beam_mesh_on_features(s, 8);
+    for (int f : {1, 2, 4, 8, 16, 32}) v.push_back({{n0 * f}});
+    return v;
+  }
+  const double a = s.geometry.length, b = s.geometry.width, longest = std::max(a, b);
+  const int nx0 = std::max(2, static_cast<int>(std::lround(10.0 * a / longest)));
+  const int ny0 = std::max(2, static_cast<int>(std::lround(10.0 * b / longest)));
+  for (int f : {1, 2, 4, 8}) v.push_back({{nx0 * f, ny0 * f}});
+  return v;
+}
+
+std::vector<Discretization> RfemSolver::stress_meshes(const Scene& s) const {
+  if (s.is_beam()) return {{{10000}}, {{100000}}};
+  const double a = s.geometry.length, b = s.geometry.width, longest = std::max(a, b);
+  return {{{std::max(2, static_cast<int>(std::lround(100.0 * a / longest))),
+            std::max(2, static_cast<int>(std::lround(100.0 * b / longest)))}}};
+}
+
+std::optional<CoarserMesh> RfemSolver::coarser_mesh(const Scene& s, const Discretization& mesh, const Options&) const {
+  // The term after h^2 is h^3, beams and plates alike (measured against the exact solutions in
+  // tests/solvers/test_extrapolation_orders.cpp: the extrapolated frequencies of NAFEMS FV5's beam,
+  // the Lasecka beam, the spatial cantilever and the paper plate converge at third order; only
+  // the symmetric clamped-clamped paper beam shows fourth).
+  if (s.is_beam() && mesh.counts.size() == 1 && mesh.counts[0] >= 2)
+    return CoarserMesh{{{mesh.counts[0] / 2}}, static_cast<double>(mesh.counts[0]) / (mesh.counts[0] / 2), 2.0, 3.0};
+  // Plates: halve each side that keeps at least 2 fragments (a side too coarse to halve stays).
+  if (s.is_plate() && mesh.counts.size() == 2 && std::max(mesh.counts[0], mesh.counts[1]) >= 4) {
+    const int nx = mesh.counts[0] >= 4 ? mesh.counts[0] / 2 : mesh.counts[0];
+    const int ny = mesh.counts[1] >= 4 ? mesh.counts[1] / 2 : mesh.counts[1];
+    return CoarserMesh{{{nx, ny}}, std::max(static_cast<double>(mesh.counts[0]) / nx, static_cast<double>(mesh.counts[1]) / ny), 2.0,
+                       3.0};
+  }
+  return std::nullopt;
+}
+
+std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discretization& mesh, double factor) const {
+  Discretization d;
+  // A plate mesh of multiples of 8 (default_mesh) grows by a whole factor: the refined mesh, the one
+  // before it and that one's halving are then uniform coarsenings of each other, which the
+  // extrapolation needs, and its counts stay multiples of 8.
+  const bool whole = s.is_plate() && std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n % 8 == 0; });
+  if (whole) factor = std::ceil(factor - 1e-9);
+  for (int n : mesh.counts) {
+    long m = std::lround(std::ceil(n * factor));
+    m += m % 2;
+    if (m > (s.is_beam() ? 2000000L : 2000L)) return std::nullopt;
+    d.counts.push_back(static_cast<int>(m));
+  }
+  return d;
+}
+
+}  // namespace modalbench::rfem
