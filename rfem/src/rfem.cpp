@@ -90,10 +90,17 @@ ResourceEstimate RfemSolver::estimate(const Scene& s, const Discretization& mesh
     if (k > 0) { bytes = std::max(bytes, 3.1e3 * n * d * (1 + k / 60)); t += n * d * (6e-6 + 4.3e-7 * std::pow(k, 1.5)); }
     if (!rq.probes.empty()) { bytes = std::max(bytes, 1.8e3 * n * d); t += 3.6e-6 * n * d; }
     if (rq.frf && !modal_frf) { bytes = std::max(bytes, 3.4e3 * n * d); t += 0.23e-6 * n * d * samples; }
-    // A rotor: one shift-invert Arnoldi per spin on the companion form (bench_rfem_rotor: 15 ms per
-    // spin at 2000 lateral coordinates, 33 ms at 4000, 6 roots), its vectors 2 n x 40.
+    // A rotor. Rotating frame (or campbell_method = arnoldi): one shift-invert Arnoldi per spin on
+    // the companion form (bench_rfem_rotor: 7 ms per spin at 2000 lateral coordinates, 13 ms at
+    // 4000, 6 roots), its vectors 2 n x 40. Stationary frame, projected: per spin a dense problem on
+    // at most 6 k + 8 vectors and k residuals (bench_rfem_rotor, 6 roots: 0.65 ms per spin at 484
+    // coordinates, 1.4 ms at 1996, 2.4 ms at 3988).
     const double spins = s.rotor ? static_cast<double>(s.rotor->spin.size()) : 0.0;
-    if (spins > 0) { bytes = std::max(bytes, 1.5e3 * n * d); t += 1e-5 * n * d * spins * (1 + k / 12); }
+    const bool projected = s.rotor && s.rotor->frame == Rotor::Frame::Stationary &&
+                           options.resolved.get_choice("campbell_method") != "arnoldi";
+    if (spins > 0) bytes = std::max(bytes, 1.5e3 * n * d);
+    if (spins > 0 && projected) t += spins * (4.5e-4 * std::pow((6 * k + 8) / 44.0, 3) + 1e-6 * n * d * k / 6);
+    else if (spins > 0) t += 5e-6 * n * d * spins * (1 + k / 12);
     e.bytes = bytes;
     e.seconds = t;
     e.basis = fmt::format("beam of {} segments, {} modes, {} FRF samples{}", mesh.counts[0], k, samples,
@@ -133,6 +140,11 @@ std::vector<OptionSpec> RfemSolver::option_specs() const {
        "FRF without frf_modes: direct (one sparse solve per frequency), projected (modes below twice the top "
        "frequency plus load-dependent Ritz vectors, each sample's error bounded, those over the tolerance (at most 0.05 dB) solved "
        "directly), or auto (projected from 20 samples)"},
+      {"campbell_method", T::Choice, "auto", {"auto", "projected", "arnoldi"}, 0, 0,
+       "rotors, stationary frame: projected (K factored once; per spin the projected gyroscopic problem on a basis "
+       "enriched by K^-1 residuals, each root's frequency bounded to 1e-9 by its residual, Arnoldi where not met; "
+       "with sturm_check, a count at the top spin) or arnoldi (shift-invert Arnoldi on the companion form at every "
+       "spin); auto: projected (the rotating frame always uses Arnoldi)"},
       {"beam_rigid_shear", T::Choice, "multipliers", {"multipliers", "joint-coordinates"}, 0, 0,
        "Euler-Bernoulli beams: rigid shear springs as constraints with multipliers, or by joint coordinates"},
       {"plate_rigid_shear", T::Choice, "corner-coordinates", {"corner-coordinates", "multipliers"}, 0, 0,
@@ -300,7 +312,7 @@ void RfemSolver::do_solve(const Scene& s, const Discretization& mesh, const Opti
     } else {
       // Its failure is the Campbell diagram's alone: the modes and statics stand.
       try {
-        r.campbell = detail::rotor_campbell(s, model, sys, sum);
+        r.campbell = detail::rotor_campbell(s, model, sys, opt, sum);
         method += "; Campbell: " + r.campbell.note;
       } catch (const std::runtime_error& e) {
         sum.raise(Status::NumericalIssue, std::string("rfem: Campbell diagram: ") + e.what());

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "modalbench/rfem/builders.hpp"
@@ -128,7 +129,102 @@ Orbit orbit_at(const Model& model, const std::vector<std::complex<double>>& V, c
 
 }  // namespace
 
-Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, Summary& sum) {
+namespace {
+
+/// How the roots of each spin were found: the projected sweep where it applies (stationary frame,
+/// campbell_method auto or projected), Arnoldi elsewhere and at the spins it leaves.
+struct SweepLog {
+  long arnoldi_spins = 0, arnoldi_restarts = 0, projected_spins = 0, solves = 0, basis = 0;
+  double bound = 0;   ///< the projected roots' largest frequency bound
+  long count = -2;    ///< the count at the top spin (-2: not taken, -1: a zero pivot)
+  long found = 0;     ///< the roots below its point
+  double count_at = 0;
+};
+
+/// The sweep's whirl roots, spin by spin, into c.points (orbits at c.orbit_points_m).
+void sweep_roots(const Scene& s, const Model& model, const System& sys, const RotorMatrices& rm, bool projected,
+                 bool count, Campbell& c, SweepLog& log) {
+  const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
+  const int k = s.request.modes;
+  Eigen::SparseLU<SpMat> fixed;  // the stationary frame's K for Arnoldi, factored where first needed
+  bool factored = false;
+  std::optional<GyroscopicSweep> sweep;
+  if (projected) sweep.emplace(sys.M, rm.G, sys.K, k);
+  Eigen::VectorXd start;  // the previous Arnoldi spin's roots: a warm start along the sweep
+  for (double spin : s.rotor->spin) {
+    const SpMat K = rotating ? SpMat(sys.K - spin * spin * rm.Kc) : sys.K;
+    const SpMat C = spin * (rotating ? rm.Cr : rm.G);
+    WhirlRoots w;
+    GyroscopicSweep::Roots pr;
+    if (sweep) pr = sweep->solve(spin);
+    if (pr.converged) {
+      w = collect_roots(model, sys, K, C, k, pr.lambda, pr.X, pr.backward_error);
+      ++log.projected_spins;
+      log.bound = std::max(log.bound, pr.bound);
+      if (count && spin == s.rotor->spin.back()) {  // every root below the k-th's bound was found
+        log.count_at = pr.lambda.back().imag() * (1 + 2 * pr.bound) + 1e-12;
+        log.count = whirl_count(sys.M, rm.G, sys.K, spin, log.count_at);
+        log.found = k + (pr.next <= log.count_at ? 1 : 0);
+      }
+    } else {
+      Eigen::SparseLU<SpMat> own;
+      if (!rotating && !factored) {
+        fixed.compute(sys.K);
+        if (fixed.info() != Eigen::Success) throw std::runtime_error("rfem rotor: the stiffness could not be factored");
+        factored = true;
+      }
+      if (rotating) {
+        own.compute(K);
+        if (own.info() != Eigen::Success)
+          throw std::runtime_error(fmt::format("rfem rotor: K - Omega^2 K_c is singular at spin {:g} rad/s (a critical "
+                                               "speed of the rotating frame): move the spin off it", spin));
+      }
+      w = whirl_roots(model, sys, K, rotating ? own : fixed, C, k, start);
+      start = std::move(w.start);
+      log.arnoldi_restarts += w.iterations;
+      ++log.arnoldi_spins;
+    }
+    CampbellPoint p;
+    p.spin_rad_s = spin;
+    p.frequencies_rad_s = w.omega;
+    p.whirl = w.whirl;
+    p.growth_rates_1_s = w.growth;
+    if (!c.orbit_points_m.empty())
+      for (std::size_t i = 0; i < w.omega.size(); ++i)
+        p.orbits.push_back(orbit_at(model, w.orbit_v[i], w.orbit_w[i], c.orbit_points_m));
+    for (double be : w.backward_error) c.max_backward_error = std::max(c.max_backward_error, be);
+    if (std::any_of(w.growth.begin(), w.growth.end(), [](double g) { return g > 0; })) c.unstable_spins.push_back(spin);
+    c.points.push_back(std::move(p));
+  }
+  if (sweep) {
+    log.solves = sweep->solves();
+    log.basis = sweep->largest_basis();
+  }
+}
+
+/// How the sweep's roots were found, for the Campbell note.
+std::string sweep_note(const SweepLog& log, bool rotating) {
+  if (log.projected_spins == 0)
+    return fmt::format("the quadratic eigenproblem by shift-invert Arnoldi (Spectra) on its companion form, {}",
+                       rotating ? "K - Omega^2 K_c factored per spin" : "K factored once for every spin");
+  std::string note = fmt::format(
+      "K factored once for every spin; the roots by projection (Voss's nonlinear Arnoldi: the projected "
+      "gyroscopic problem on a basis of at most {} vectors enriched by K^-1 of the residuals, {} solves), each "
+      "root's frequency within {:.2g} (relative) of a true one by its residual in the K^-1 norm (largest bound "
+      "{:.2g})",
+      log.basis, log.solves, GyroscopicSweep::kBound, log.bound);
+  if (log.count >= 0)
+    note += fmt::format("; the count of whirl frequencies below {:.8g} rad/s at the top spin (LDL' inertia of "
+                        "P(i w)) is {}, the roots found there {}", log.count_at, log.count, log.found);
+  if (log.arnoldi_spins > 0)
+    note += fmt::format("; {} spin(s) by shift-invert Arnoldi, where the projection did not meet its bound",
+                        log.arnoldi_spins);
+  return note;
+}
+
+}  // namespace
+
+Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, const ResolvedOptions& opt, Summary& sum) {
   const RotorMatrices rm = rotor_matrices(model, sys);
   const bool rotating = s.rotor->frame == Rotor::Frame::Rotating;
   const int k = s.request.modes;
@@ -140,39 +236,12 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
                    "between the elements' centres";
   }
   c.max_backward_error = 0;
-  Eigen::SparseLU<SpMat> fixed;
-  if (!rotating) {
-    fixed.compute(sys.K);
-    if (fixed.info() != Eigen::Success) throw std::runtime_error("rfem rotor: the stiffness could not be factored");
-  }
-  long short_spins = 0, iterations = 0;
-  Eigen::VectorXd start;  // the previous spin's roots: a warm start along the sweep
-  for (double spin : s.rotor->spin) {
-    const SpMat K = rotating ? SpMat(sys.K - spin * spin * rm.Kc) : sys.K;
-    const SpMat C = spin * (rotating ? rm.Cr : rm.G);
-    Eigen::SparseLU<SpMat> own;
-    if (rotating) {
-      own.compute(K);
-      if (own.info() != Eigen::Success)
-        throw std::runtime_error(fmt::format("rfem rotor: K - Omega^2 K_c is singular at spin {:g} rad/s (a critical "
-                                             "speed of the rotating frame): move the spin off it", spin));
-    }
-    WhirlRoots w = whirl_roots(model, sys, K, rotating ? own : fixed, C, k, start);
-    start = std::move(w.start);
-    iterations += w.iterations;
-    CampbellPoint p;
-    p.spin_rad_s = spin;
-    p.frequencies_rad_s = w.omega;
-    p.whirl = w.whirl;
-    p.growth_rates_1_s = w.growth;
-    if (!c.orbit_points_m.empty())
-      for (std::size_t i = 0; i < w.omega.size(); ++i)
-        p.orbits.push_back(orbit_at(model, w.orbit_v[i], w.orbit_w[i], c.orbit_points_m));
-    for (double be : w.backward_error) c.max_backward_error = std::max(c.max_backward_error, be);
-    if (static_cast<int>(w.omega.size()) < k) ++short_spins;
-    if (std::any_of(w.growth.begin(), w.growth.end(), [](double g) { return g > 0; })) c.unstable_spins.push_back(spin);
-    c.points.push_back(std::move(p));
-  }
+  const bool projected = !rotating && opt.get_choice("campbell_method") != "arnoldi" && 2L * k + 2 < sys.n();
+  SweepLog log;
+  sweep_roots(s, model, sys, rm, projected, opt.get_bool("sturm_check"), c, log);
+  const long short_spins = std::count_if(c.points.begin(), c.points.end(), [&](const CampbellPoint& p) {
+    return static_cast<int>(p.frequencies_rad_s.size()) < k;
+  });
   const double top = s.rotor->spin.back();
   if (round_elements(model) && !rotating) {
     std::tie(c.forward_criticals, c.backward_criticals) = axisymmetric_criticals(s, model, top);
@@ -183,16 +252,24 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, S
     c.criticals_note = "forward: where a rotating-frame frequency is 0, K x = Omega^2 K_c x (for an asymmetric shaft "
                        "the ends of its unstable ranges); backward critical speeds are not given in the rotating frame";
   }
-  c.note = fmt::format("rfem lateral model, {} frame: {}; the quadratic eigenproblem by shift-invert Arnoldi "
-                       "(Spectra) on its companion form, {}; each pair +-lambda once, growth rate abs(Re lambda) where it "
-                       "exceeds max(1e-8, 10 sqrt(backward error)) abs(lambda); whirl from the orbits of v, w at the rigid "
-                       "elements; undamped (material.loss_factor is not applied)",
+  c.note = fmt::format("rfem lateral model, {} frame: {}; {}; each pair +-lambda once, growth rate abs(Re lambda) "
+                       "where it exceeds max(1e-8, 10 sqrt(backward error)) abs(lambda); whirl from the orbits of v, w "
+                       "at the rigid elements; undamped (material.loss_factor is not applied)",
                        c.frame,
                        rotating ? "Coriolis -+2 m Omega, (2 J_t - J_p) Omega and spin softening m Omega^2, (J_t - J_p) "
                                   "Omega^2 per rigid element"
                                 : "gyroscopic J_p Omega per rigid element",
-                       rotating ? "K - Omega^2 K_c factored per spin" : "K factored once for every spin");
-  sum.set_diagnostic("campbell_arnoldi_restarts", static_cast<double>(iterations));
+                       sweep_note(log, rotating));
+  sum.set_diagnostic("campbell_arnoldi_restarts", static_cast<double>(log.arnoldi_restarts));
+  sum.set_diagnostic("campbell_arnoldi_spins", static_cast<double>(log.arnoldi_spins));
+  sum.set_diagnostic("campbell_projected_solves", static_cast<double>(log.solves));
+  sum.set_diagnostic("campbell_projected_basis", static_cast<double>(log.basis));
+  if (log.count == -1)
+    sum.raise(Status::NumericalIssue, "rfem rotor: the count at the top spin met a zero pivot; no root is proven not missed");
+  else if (log.count >= 0 && log.count != log.found)
+    sum.raise(Status::NumericalIssue,
+              fmt::format("rfem rotor: {} whirl frequencies lie below {:.8g} rad/s at the top spin, {} were found there",
+                          log.count, log.count_at, log.found));
   if (short_spins > 0)
     sum.raise(Status::NumericalIssue, fmt::format("rfem rotor: fewer than {} whirl roots found at {} spin(s)", k, short_spins));
   if (!(c.max_backward_error <= 1e-8))

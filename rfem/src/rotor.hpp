@@ -9,6 +9,7 @@
 //     K_c = m on v, w and J_t - J_p on theta_y, theta_z (Coriolis and spin softening; the fixed
 //     frame's J_t phi'' - i J_p Omega phi' + k phi = 0 with phi = chi e^{i Omega t}).
 // ../shared/ROTORS.md 4 states the same per RFE; the signs here are re-derived for this code's axes.
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <complex>
 #include <string>
@@ -18,6 +19,7 @@
 #include "modalbench/rfem/model.hpp"
 #include "modalbench/rfem/system.hpp"
 #include "modalbench/scene.hpp"
+#include "modalbench/solver.hpp"
 
 namespace modalbench::rfem::detail {
 
@@ -53,11 +55,62 @@ struct WhirlRoots {
 WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, const Eigen::SparseLU<SpMat>& lu,
                        const SpMat& C, int k, const Eigen::VectorXd& start = {});
 
+/// The whirl roots from eigenpairs however found: `lambda` (each pair +-lambda once, ascending by
+/// |lambda|) with their vectors x (columns of X); the lowest k, a repeated root's basis turned to
+/// the orbits' senses, each with its backward error (computed here, or given per root).
+WhirlRoots collect_roots(const Model& model, const System& sys, const SpMat& K, const SpMat& C, int k,
+                         const std::vector<std::complex<double>>& lambda, const Eigen::MatrixXcd& X,
+                         const std::vector<double>& backward_errors = {});
+
+/// The stationary frame's sweep by projection (rotor_sweep.cpp): M x'' + Omega G x' + K x = 0 with
+/// M, K positive definite and G skew is a gyroscopic system whose quadratic form
+/// x* P(i w) x = x*Kx + w Omega x*(iG)x - w^2 x*Mx has one positive root per x, so its frequencies
+/// obey a minmax principle (Voss & Werner 1982): a projection's j-th frequency is an upper bound of
+/// the j-th. Per spin: the projected problem on a basis V (a dense Hermitian pencil of size 2 dim V),
+/// its k lowest roots checked by their residuals in the K^-1 norm, which bound each root's
+/// frequency relative to a true one (the pencil [[0, M], [-M, -Omega G]], diag(M, K) of
+/// 1 / lambda), the basis enriched by K^-1 of the residuals of those over the bound (Voss's
+/// nonlinear Arnoldi). K is factored once for the whole sweep.
+class GyroscopicSweep {
+ public:
+  /// Factors K (Cholesky, the sweep's one factorization).
+  GyroscopicSweep(const SpMat& M, const SpMat& G, const SpMat& K, int k);
+  struct Roots {
+    std::vector<std::complex<double>> lambda;  ///< i w, ascending
+    Eigen::MatrixXcd X;                        ///< the vectors x
+    std::vector<double> backward_error;        ///< per root (as collect_roots computes it)
+    double bound = 0;                          ///< largest |w - w_true| / w_true bound of the k
+    double next = 0;                           ///< the projection's (k+1)-th frequency (an upper bound)
+    bool converged = false;                    ///< every bound <= kBound within the step limit
+  };
+  /// Each root's frequency within this of a true one, relative.
+  static constexpr double kBound = 1e-9;
+  Roots solve(double spin);
+  long solves() const { return solves_; }
+  long largest_basis() const { return largest_; }
+
+ private:
+  bool add(const Eigen::VectorXd& v);
+  void restart(const Eigen::MatrixXcd& keep);
+  const SpMat &M_, &G_, &K_;
+  double normM_, normG_, normK_;
+  Eigen::SimplicialLLT<SpMat> llt_;
+  int k_;
+  long cap_, m_ = 0, solves_ = 0, largest_ = 0;
+  Eigen::MatrixXd V_, Mr_, Gr_, Kr_;
+};
+
+/// The number of whirl frequencies below sigma at a spin, stationary frame (the minmax principle
+/// above): the negative eigenvalues of the Hermitian P(i sigma) = K - sigma^2 M + i sigma Omega G, by
+/// an LDL' of its real form [[A, -B], [B, A]] (each eigenvalue twice). -1 where a pivot was zero.
+long whirl_count(const SpMat& M, const SpMat& G, const SpMat& K, double spin, double sigma);
+
 /// The positive Omega with K x = Omega^2 B x (K positive definite, B symmetric, perhaps indefinite),
 /// ascending: every one up to `top` and the next above, where there is one.
 std::vector<double> synchronous_speeds(const SpMat& K, const SpMat& B, double top);
 
-/// The Campbell diagram and critical speeds of scene.rotor on `model` (campbell_refusal empty).
-Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, Summary& sum);
+/// The Campbell diagram and critical speeds of scene.rotor on `model` (campbell_refusal empty);
+/// `opt`: rfem's campbell_method and sturm_check.
+Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, const ResolvedOptions& opt, Summary& sum);
 
 }  // namespace modalbench::rfem::detail
