@@ -210,9 +210,9 @@ std::string sweep_note(const SweepLog& log, bool rotating) {
   std::string note = fmt::format(
       "K factored once for every spin; the roots by projection (Voss's nonlinear Arnoldi: the projected "
       "gyroscopic problem on a basis of at most {} vectors enriched by K^-1 of the residuals, {} solves), each "
-      "root's frequency within {:.2g} (relative) of a true one by its residual in the K^-1 norm (largest bound "
-      "{:.2g})",
-      log.basis, log.solves, GyroscopicSweep::kBound, log.bound);
+      "root's frequency within {:.2g} (relative) of a true one by its residual in the K^-1 norm, or where that "
+      "bound stops falling (rounding) within {:.2g} (largest bound {:.2g}, added to the Campbell estimate)",
+      log.basis, log.solves, GyroscopicSweep::kBound, GyroscopicSweep::kFloorBound, log.bound);
   if (log.count >= 0)
     note += fmt::format("; the count of whirl frequencies below {:.8g} rad/s at the top spin (LDL' inertia of "
                         "P(i w)) is {}, the roots found there {}", log.count_at, log.count, log.found);
@@ -264,6 +264,7 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, c
   sum.set_diagnostic("campbell_arnoldi_spins", static_cast<double>(log.arnoldi_spins));
   sum.set_diagnostic("campbell_projected_solves", static_cast<double>(log.solves));
   sum.set_diagnostic("campbell_projected_basis", static_cast<double>(log.basis));
+  if (log.projected_spins > 0) sum.set_diagnostic("campbell_solve_error_bound", log.bound);
   if (log.count == -1)
     sum.raise(Status::NumericalIssue, "rfem rotor: the count at the top spin met a zero pivot; no root is proven not missed");
   else if (log.count >= 0 && log.count != log.found)

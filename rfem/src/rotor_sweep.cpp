@@ -140,6 +140,7 @@ GyroscopicSweep::Roots GyroscopicSweep::solve(double spin) {
     solves_ += 2 * b;
     for (long j = 0; j < b; ++j) add(R.col(j));
   }
+  std::vector<double> last(static_cast<std::size_t>(k_), std::numeric_limits<double>::infinity());
   for (int step = 0; step < kMaxSteps; ++step) {
     const Ritz z = projected_roots(Mr_.topLeftCorner(m_, m_), Gr_.topLeftCorner(m_, m_), Kr_.topLeftCorner(m_, m_),
                                    spin, k_ + 1);
@@ -178,7 +179,10 @@ GyroscopicSweep::Roots GyroscopicSweep::solve(double spin) {
       const double eta = std::sqrt((Ys.col(2 * j).squaredNorm() + Ys.col(2 * j + 1).squaredNorm()) /
                                    energy[static_cast<std::size_t>(j)]);
       out.bound = std::max(out.bound, std::isfinite(eta) ? eta : std::numeric_limits<double>::infinity());
-      if (!(eta <= kBound)) {
+      double& before = last[static_cast<std::size_t>(j)];
+      const bool floor = eta <= kFloorBound && eta > 0.5 * before;  // no longer falling: rounding
+      before = eta;
+      if (!(eta <= kBound) && !floor) {
         open.push_back(2 * j);
         open.push_back(2 * j + 1);
       }
