@@ -7,15 +7,19 @@
 // arnoldi); rotating frame (K - Omega^2 K_c factored per spin, Arnoldi). Beside them the time of
 // one sparse LU of K alone and of the shaft's 6 modes at rest; "solves": the projection's K^-1
 // solves, in whole solves (a residual's norm takes the forward half of one, its enrichment the back
-// half), "basis" its largest basis, "arnoldi" the spins it left to Arnoldi.
+// half), "basis" its largest basis, "arnoldi" the spins it left to Arnoldi. Last, per mesh, the
+// floor of any sweep that checks every root: 61 spins x 6 roots x (the residual's products with K
+// and M, G's left out, and 2 forward half solves for its K^-1 norm).
 //
 // Sample run:
 //   build/benchmarks/rfem/bench_rfem_rotor
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <fmt/format.h>
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "modalbench/rfem/builders.hpp"
 #include "modalbench/rfem/rfem.hpp"
@@ -39,6 +43,7 @@ int main() {
   fmt::print("{:>9} {:>12} {:>12} {:>12} {:>14} {:>14} {:>12} {:>8} {:>7} {:>8} {:>8}\n", "segments", "coordinates",
              "LU of K [s]", "modes [s]", "61 spins [s]", "per spin [s]", "Arnoldi [s]", "solves", "basis", "arnoldi",
              "status");
+  std::vector<double> floors;
   for (const int n : {120, 240, 498, 996}) {
     rfem::BeamOptions bo;
     bo.rigid_shear = rfem::RigidShear::JointCoordinates;
@@ -46,6 +51,22 @@ int main() {
     auto t0 = std::chrono::steady_clock::now();
     Eigen::SparseLU<rfem::SpMat> lu(sys.K);
     const double t_lu = seconds(t0);
+    // The floor of a verified root: its residual (sparse products with K and M on its real and
+    // imaginary parts; G's two are left out) and the residual's K^-1 norm (the forward half of a
+    // Cholesky solve, twice).
+    const Eigen::SimplicialLLT<rfem::SpMat> llt(sys.K);
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(sys.n());
+    Eigen::VectorXd y;
+    t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 200; ++i) y = sys.K * ones;
+    const double t_k = seconds(t0) / 200;
+    t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 200; ++i) y = sys.M * ones;
+    const double t_m = seconds(t0) / 200;
+    t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 200; ++i) y = llt.matrixL().solve(llt.permutationP() * ones);
+    const double t_half = seconds(t0) / 200;
+    floors.push_back(61.0 * 6 * (2 * t_k + 2 * t_m + 2 * t_half));
     Options o;
     o.estimate_error = false;
     Scene rest = s;
@@ -61,6 +82,9 @@ int main() {
                r.summary.diagnostic("campbell_projected_basis"), r.summary.diagnostic("campbell_arnoldi_spins"),
                to_string(r.summary.status));
   }
+  fmt::print("floor of a checked sweep (61 spins x 6 roots x (K and M products, 2 half solves each)): {:.3g} s, {:.3g} "
+             "s, {:.3g} s, {:.3g} s\n",
+             floors[0], floors[1], floors[2], floors[3]);
   s.rotor->frame = Rotor::Frame::Rotating;
   Options o;
   o.estimate_error = false;
