@@ -142,7 +142,8 @@ std::vector<OptionSpec> RfemSolver::option_specs() const {
        "directly), or auto (projected from 20 samples)"},
       {"campbell_method", T::Choice, "auto", {"auto", "projected", "arnoldi"}, 0, 0,
        "rotors, stationary frame: projected (K factored once; per spin the projected gyroscopic problem on a basis "
-       "enriched by K^-1 residuals, each root's frequency bounded to 1e-9 by its residual, Arnoldi where not met; "
+       "enriched by K^-1 residuals, each root's frequency bounded by its residual to 1e-9 (or, where rounding stops "
+       "it, to at most 1e-7, reported), Arnoldi where not met; "
        "with sturm_check, a count at the top spin) or arnoldi (shift-invert Arnoldi on the companion form at every "
        "spin); auto: projected (the rotating frame always uses Arnoldi)"},
       {"beam_rigid_shear", T::Choice, "multipliers", {"multipliers", "joint-coordinates"}, 0, 0,

@@ -89,7 +89,8 @@ Ritz projected_roots(const Eigen::MatrixXd& Mr, const Eigen::MatrixXd& Gr, const
 }  // namespace
 
 GyroscopicSweep::GyroscopicSweep(const SpMat& M, const SpMat& G, const SpMat& K, int k)
-    : M_(M), G_(G), K_(K), normM_(norm1(M)), normG_(norm1(G)), normK_(norm1(K)), llt_(K), k_(k), cap_(std::min<long>(K.rows(), std::max(6L * k + 8, 32L))) {
+    : M_(M), G_(G), K_(K), normM_(norm1(M)), normG_(norm1(G)), normK_(norm1(K)), llt_(K), k_(k),
+      cap_(std::min<long>(K.rows(), std::max(6L * k + 8, 32L))) {
   V_.resize(K.rows(), cap_);
   Mr_ = Gr_ = Kr_ = Eigen::MatrixXd::Zero(cap_, cap_);
 }
@@ -149,12 +150,14 @@ GyroscopicSweep::Roots GyroscopicSweep::solve(double spin) {
     out.backward_error.clear();
     out.X.resize(n, k_);
     out.bound = 0;
-    out.next = static_cast<int>(z.w.size()) > k_ ? z.w[static_cast<std::size_t>(k_)] : std::numeric_limits<double>::infinity();
+    out.next = static_cast<int>(z.w.size()) > k_ ? z.w[static_cast<std::size_t>(k_)]
+                                                 : std::numeric_limits<double>::infinity();
     // The residuals P(w) x of the k roots (real and imaginary parts as columns), their K^-1 norms by
     // the forward half of the Cholesky solve (r' K^-1 r = |L^-1 P r|^2, K = P' L L' P).
     Eigen::MatrixXd Rs(n, 2 * k_);
     std::vector<double> energy(static_cast<std::size_t>(k_));
-    const Eigen::MatrixXd Xr = V_.leftCols(m_) * z.a.leftCols(k_).real(), Xi = V_.leftCols(m_) * z.a.leftCols(k_).imag();
+    const Eigen::MatrixXd Xr = V_.leftCols(m_) * z.a.leftCols(k_).real();
+    const Eigen::MatrixXd Xi = V_.leftCols(m_) * z.a.leftCols(k_).imag();
     for (int j = 0; j < k_; ++j) {
       const double w = z.w[static_cast<std::size_t>(j)];
       Eigen::VectorXd xr = Xr.col(j), xi = Xi.col(j);
@@ -202,7 +205,8 @@ GyroscopicSweep::Roots GyroscopicSweep::solve(double spin) {
     if (m_ + static_cast<long>(fresh.size()) > cap_) {
       Eigen::MatrixXcd keep(n, z.a.cols());
       for (Eigen::Index j = 0; j < z.a.cols(); ++j)
-        keep.col(j) = (V_.leftCols(m_) * z.a.col(j).real()).cast<Cd>() + Cd(0, 1) * (V_.leftCols(m_) * z.a.col(j).imag()).cast<Cd>();
+        keep.col(j) = (V_.leftCols(m_) * z.a.col(j).real()).cast<Cd>() +
+                      Cd(0, 1) * (V_.leftCols(m_) * z.a.col(j).imag()).cast<Cd>();
       restart(keep);
     }
     long added = 0;
@@ -231,7 +235,8 @@ long whirl_count(const SpMat& M, const SpMat& G, const SpMat& K, double spin, do
   R.setFromTriplets(t.begin(), t.end());
   // Each coordinate's real and imaginary parts eliminated together.
   std::vector<int> groups(static_cast<std::size_t>(2 * n));
-  for (Eigen::Index i = 0; i < n; ++i) groups[static_cast<std::size_t>(i)] = groups[static_cast<std::size_t>(i + n)] = static_cast<int>(i);
+  for (Eigen::Index i = 0; i < n; ++i)
+    groups[static_cast<std::size_t>(i)] = groups[static_cast<std::size_t>(i + n)] = static_cast<int>(i);
   KktLdlt ldlt;
   ldlt.analyze(R, SpMat(0, 2 * n), groups);
   if (!ldlt.factorize(R)) return -1;
