@@ -90,17 +90,19 @@ ResourceEstimate RfemSolver::estimate(const Scene& s, const Discretization& mesh
     if (k > 0) { bytes = std::max(bytes, 3.1e3 * n * d * (1 + k / 60)); t += n * d * (6e-6 + 4.3e-7 * std::pow(k, 1.5)); }
     if (!rq.probes.empty()) { bytes = std::max(bytes, 1.8e3 * n * d); t += 3.6e-6 * n * d; }
     if (rq.frf && !modal_frf) { bytes = std::max(bytes, 3.4e3 * n * d); t += 0.23e-6 * n * d * samples; }
-    // A rotor. Rotating frame (or campbell_method = arnoldi): one shift-invert Arnoldi per spin on
-    // the companion form (bench_rfem_rotor: 7 ms per spin at 2000 lateral coordinates, 13 ms at
-    // 4000, 6 roots), its vectors 2 n x 40. Stationary frame, projected: per spin a dense problem on
-    // at most 6 k + 8 vectors and k residuals (bench_rfem_rotor, 6 roots: 0.65 ms per spin at 484
-    // coordinates, 1.4 ms at 1996, 2.4 ms at 3988).
+    // A rotor: per spin, the stationary frame's projected sweep or Arnoldi (rotor.hpp's cost model,
+    // which also chooses between them), Arnoldi in the rotating frame; Arnoldi's vectors 2 n x 40.
+    // A lateral model has 4 coordinates per segment.
     const double spins = s.rotor ? static_cast<double>(s.rotor->spin.size()) : 0.0;
-    const bool projected = s.rotor && s.rotor->frame == Rotor::Frame::Stationary &&
-                           options.resolved.get_choice("campbell_method") != "arnoldi";
-    if (spins > 0) bytes = std::max(bytes, 1.5e3 * n * d);
-    if (spins > 0 && projected) t += spins * (4.5e-4 * std::pow((6 * k + 8) / 44.0, 3) + 1e-6 * n * d * k / 6);
-    else if (spins > 0) t += 5e-6 * n * d * spins * (1 + k / 12);
+    if (spins > 0) {
+      const double coordinates = 2.0 * n * d;
+      const int roots = static_cast<int>(k);
+      const bool projected = s.rotor->frame == Rotor::Frame::Stationary &&
+                             detail::projected_sweep(options.resolved.get_choice("campbell_method"), coordinates, roots);
+      bytes = std::max(bytes, 1.5e3 * n * d);
+      t += spins * (projected ? detail::projected_seconds_per_spin(coordinates, roots)
+                              : detail::arnoldi_seconds_per_spin(coordinates, roots));
+    }
     e.bytes = bytes;
     e.seconds = t;
     e.basis = fmt::format("beam of {} segments, {} modes, {} FRF samples{}", mesh.counts[0], k, samples,
@@ -145,7 +147,8 @@ std::vector<OptionSpec> RfemSolver::option_specs() const {
        "enriched by K^-1 residuals, each root's frequency bounded by its residual to 1e-9 (or, where rounding stops "
        "it, to at most 1e-7, reported), Arnoldi where not met; "
        "with sturm_check, a count at the top spin) or arnoldi (shift-invert Arnoldi on the companion form at every "
-       "spin); auto: projected (the rotating frame always uses Arnoldi)"},
+       "spin); auto: the cheaper by rfem's cost model (projected for few roots: 6 on 2000 coordinates, 5x faster; "
+       "Arnoldi for many: 20 on 400); the rotating frame always uses Arnoldi"},
       {"beam_rigid_shear", T::Choice, "multipliers", {"multipliers", "joint-coordinates"}, 0, 0,
        "Euler-Bernoulli beams: rigid shear springs as constraints with multipliers, or by joint coordinates"},
       {"plate_rigid_shear", T::Choice, "corner-coordinates", {"corner-coordinates", "multipliers"}, 0, 0,

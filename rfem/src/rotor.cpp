@@ -236,7 +236,7 @@ Campbell rotor_campbell(const Scene& s, const Model& model, const System& sys, c
                    "between the elements' centres";
   }
   c.max_backward_error = 0;
-  const bool projected = !rotating && opt.get_choice("campbell_method") != "arnoldi" && 2L * k + 2 < sys.n();
+  const bool projected = !rotating && projected_sweep(opt.get_choice("campbell_method"), static_cast<double>(sys.n()), k);
   SweepLog log;
   sweep_roots(s, model, sys, rm, projected, opt.get_bool("sturm_check"), c, log);
   const long short_spins = std::count_if(c.points.begin(), c.points.end(), [&](const CampbellPoint& p) {

@@ -216,6 +216,17 @@ GyroscopicSweep::Roots GyroscopicSweep::solve(double spin) {
   return out;
 }
 
+double projected_seconds_per_spin(double coordinates, int k) {
+  return 4.5e-4 * std::pow((6.0 * k + 8.0) / 44.0, 3) + 0.5e-6 * coordinates * k / 6.0;
+}
+
+double arnoldi_seconds_per_spin(double coordinates, int k) { return 2.5e-6 * coordinates * (1.0 + k / 12.0); }
+
+bool projected_sweep(const std::string& method, double coordinates, int k) {
+  if (method == "arnoldi" || !(2.0 * k + 2 < coordinates)) return false;
+  return method == "projected" || projected_seconds_per_spin(coordinates, k) < arnoldi_seconds_per_spin(coordinates, k);
+}
+
 long whirl_count(const SpMat& M, const SpMat& G, const SpMat& K, double spin, double sigma) {
   const Eigen::Index n = K.rows();
   const SpMat A = K - sigma * sigma * M, B = sigma * spin * G;

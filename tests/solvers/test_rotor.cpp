@@ -328,6 +328,7 @@ void projected_against_arnoldi(const Scene& s, int segments, double largest_boun
   const Solver& rfem = registry().get("rfem");
   Options o;
   o.estimate_error = false;
+  o.backend = {{"campbell_method", "projected"}};
   const Result p = rfem.solve(s, Discretization{{segments}}, o);
   o.backend = {{"campbell_method", "arnoldi"}};
   const Result a = rfem.solve(s, Discretization{{segments}}, o);
@@ -354,10 +355,11 @@ void projected_against_arnoldi(const Scene& s, int segments, double largest_boun
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(rfem_s_projected_sweep_agrees_with_its_arnoldi_sweep_root_by_root) {
-  // The stationary frame's default (campbell_method = projected: one factorization of K, the
-  // projected gyroscopic problem per spin, each root's frequency proven within 1e-9 of a true one
-  // by its residual in the K^-1 norm, or within its reported bound (at most 1e-7) where rounding
-  // stops the residual falling, and the count at the top spin) against shift-invert Arnoldi on the
+  // The stationary frame's projection (campbell_method = projected, auto's choice for few roots:
+  // one factorization of K, the projected gyroscopic problem per spin, each root's frequency proven
+  // within 1e-9 of a true one by its residual in the K^-1 norm, or within its reported bound (at
+  // most 1e-7) where rounding stops the residual falling, and the count at the top spin) against
+  // shift-invert Arnoldi on the
   // companion form at every spin (Spectra, 1e-12): the same discrete model, so the two agree to the
   // projection's bound plus Arnoldi's tolerance. Friswell's rotor over 61 spins, including the
   // repeated pairs at spin 0: 10 roots on 200 Timoshenko segments (every bound 1e-9), and 12 roots on
