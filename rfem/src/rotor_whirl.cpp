@@ -157,6 +157,13 @@ double backward_error(const SpMat& M, const SpMat& C, const SpMat& K, Cd lambda,
   return r1 / ((a * a * norms[0] + a * norms[1] + norms[2]) * x1);
 }
 
+/// The end of the repeated root starting at i: its copies within 1e-8 (lambda ascending by |lambda|).
+std::size_t repeated_end(const std::vector<Cd>& lambda, std::size_t i) {
+  std::size_t j = i + 1;
+  while (j < lambda.size() && std::abs(lambda[j] - lambda[i]) <= 1e-8 * std::abs(lambda[i])) ++j;
+  return j;
+}
+
 /// The copies of a repeated root (columns of X, eigenvalues lam) by Rayleigh-Ritz on their span:
 /// the quadratic eigenproblem projected there (companion form, dense), its roots nearest the copies'
 /// mean. Arnoldi's copies of a repeated root differ by up to 2e-9 (Timoshenko shaft at rest, 64
@@ -206,19 +213,16 @@ WhirlRoots collect_roots(const Model& model, const System& sys, const SpMat& K, 
   const std::size_t count = lambda.size();
   for (std::size_t i = 0; i < count && static_cast<int>(out.omega.size()) < k;) {
     // A repeated root (its copies within 1e-8): one basis, turned to the orbits' senses.
-    std::size_t j = i + 1;
-    while (j < count && std::abs(lambda[j] - lambda[i]) <= 1e-8 * std::abs(lambda[i])) ++j;
+    const std::size_t j = repeated_end(lambda, i);
     Eigen::MatrixXcd Xr(n, static_cast<Eigen::Index>(j - i));
     for (std::size_t m = i; m < j; ++m) Xr.col(static_cast<Eigen::Index>(m - i)) = X.col(static_cast<Eigen::Index>(m));
-    std::vector<Cd> lr(lambda.begin() + static_cast<long>(i), lambda.begin() + static_cast<long>(j));
-    if (j - i > 1 && backward_errors.empty()) rayleigh_ritz(M, C, K, lr, Xr);
     std::vector<double> be(j - i);
     for (std::size_t m = i; m < j; ++m)
       be[m - i] = m < backward_errors.size() ? backward_errors[m]
-                                             : backward_error(M, C, K, lr[m - i], Xr.col(static_cast<Eigen::Index>(m - i)), norms);
+                                             : backward_error(M, C, K, lambda[m], X.col(static_cast<Eigen::Index>(m)), norms);
     if (j - i > 1) diagonalize_sense(model, sys, Xr);
     for (std::size_t m = i; m < j && static_cast<int>(out.omega.size()) < k; ++m) {
-      const Cd l = lr[m - i];
+      const Cd l = lambda[m];
       const Eigen::VectorXcd x = Xr.col(static_cast<Eigen::Index>(m - i));
       // Rounding leaves |Re lambda| of about sqrt(backward error) |lambda| where roots meet (a
       // defective pair at the edge of an unstable range); below that it is not a growth rate.
@@ -274,6 +278,18 @@ WhirlRoots whirl_roots(const Model& model, const System& sys, const SpMat& K, co
       const Eigen::VectorXcd v = ep.V.col(keep[i]) / ep.V.col(keep[i]).norm();
       start_next += v.real() + v.imag();
     }
+  }
+  // Arnoldi's copies of a repeated root refined on their span.
+  for (std::size_t i = 0; i < lambda.size();) {
+    const std::size_t j = repeated_end(lambda, i);
+    if (j - i > 1) {
+      std::vector<Cd> lr(lambda.begin() + static_cast<long>(i), lambda.begin() + static_cast<long>(j));
+      Eigen::MatrixXcd Xr = X.middleCols(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j - i));
+      rayleigh_ritz(sys.M, C, K, lr, Xr);
+      std::copy(lr.begin(), lr.end(), lambda.begin() + static_cast<long>(i));
+      X.middleCols(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j - i)) = Xr;
+    }
+    i = j;
   }
   WhirlRoots out = collect_roots(model, sys, K, C, k, lambda, X);
   out.start = std::move(start_next);

@@ -320,60 +320,6 @@ BOOST_AUTO_TEST_CASE(rfem_dtfm_and_exact_agree_on_friswell_s_two_disc_rotor) {
   }
 }
 
-namespace {
-
-/// rfem's projected sweep against its Arnoldi sweep on the same model: root by root within the
-/// sweep's own bound (campbell_solve_error_bound) plus Arnoldi's tolerance, the senses alike.
-void projected_against_arnoldi(const Scene& s, int segments, double largest_bound) {
-  const Solver& rfem = registry().get("rfem");
-  Options o;
-  o.estimate_error = false;
-  o.backend = {{"campbell_method", "projected"}};
-  const Result p = rfem.solve(s, Discretization{{segments}}, o);
-  o.backend = {{"campbell_method", "arnoldi"}};
-  const Result a = rfem.solve(s, Discretization{{segments}}, o);
-  BOOST_TEST_INFO(p.summary.message << " / " << a.summary.message);
-  BOOST_TEST_REQUIRE((p.summary.status == Status::Success && a.summary.status == Status::Success));
-  BOOST_TEST(p.summary.diagnostic("campbell_arnoldi_spins") == 0);
-  const double bound = p.summary.diagnostic("campbell_solve_error_bound");
-  BOOST_TEST(bound <= largest_bound);
-  BOOST_TEST(p.campbell.note.find("count of whirl frequencies") != std::string::npos);
-  BOOST_TEST(a.campbell.note.find("shift-invert Arnoldi") != std::string::npos);
-  const std::size_t k = static_cast<std::size_t>(s.request.modes);
-  for (std::size_t i = 0; i < s.rotor->spin.size(); ++i) {
-    const CampbellPoint &x = p.campbell.points[i], &y = a.campbell.points[i];
-    BOOST_TEST_REQUIRE(x.frequencies_rad_s.size() == k);
-    BOOST_TEST_REQUIRE(y.frequencies_rad_s.size() == k);
-    for (std::size_t j = 0; j < k; ++j) {
-      BOOST_TEST_INFO("spin " << x.spin_rad_s << " root " << j);
-      BOOST_TEST(rel(x.frequencies_rad_s[j], y.frequencies_rad_s[j]) <= bound + 1e-10);
-      if (x.spin_rad_s > 0) BOOST_TEST((x.whirl[j] == y.whirl[j]));
-    }
-  }
-}
-
-}  // namespace
-
-BOOST_AUTO_TEST_CASE(rfem_s_projected_sweep_agrees_with_its_arnoldi_sweep_root_by_root) {
-  // The stationary frame's projection (campbell_method = projected, auto's choice for few roots:
-  // one factorization of K, the projected gyroscopic problem per spin, each root's frequency proven
-  // within 1e-9 of a true one by its residual in the K^-1 norm, or within its reported bound (at
-  // most 1e-7) where rounding stops the residual falling, and the count at the top spin) against
-  // shift-invert Arnoldi on the
-  // companion form at every spin (Spectra, 1e-12): the same discrete model, so the two agree to the
-  // projection's bound plus Arnoldi's tolerance. Friswell's rotor over 61 spins, including the
-  // repeated pairs at spin 0: 10 roots on 200 Timoshenko segments (every bound 1e-9), and 12 roots on
-  // 300 Euler-Bernoulli segments, whose residuals stop at 1e-9 to 1e-8 (rounding).
-  Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/rotor_friswell_two_discs.toml");
-  s.rotor->spin.clear();
-  for (int i = 0; i <= 60; ++i) s.rotor->spin.push_back(4000.0 * kPi / 30.0 * i / 60.0);
-  s.request.modes = 10;
-  projected_against_arnoldi(s, 200, 1e-9);
-  s.theory = Theory::EulerBernoulli;
-  s.request.modes = 12;
-  projected_against_arnoldi(s, 300, 1e-7);
-}
-
 BOOST_AUTO_TEST_CASE(the_lateral_model_at_rest_bends_in_both_planes_as_the_closed_forms) {
   // The asymmetric shaft without spin, loaded across in both planes: pinned-pinned frequencies
   // (n pi / L)^2 sqrt(EI / rho A) per plane (EI_z for v, EI_y for w), the point load's deflection
