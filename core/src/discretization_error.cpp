@@ -21,10 +21,12 @@ namespace modalbench {
 namespace {
 
 /// The grid convergence index of one quantity on the judged mesh: max(3 e1, 1.25 e2) from q
-/// (judged), qc (coarse) and qcc (coarser, where there is one).
+/// (judged), qc (coarse) and qcc (coarser, where there is one); 1.25 e1 where a fourth mesh
+/// confirms the order (confirmed_order).
 class Gci {
  public:
-  Gci(double order, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser, bool other_is_finer)
+  Gci(double order, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser,
+      bool other_is_finer, const Result& fine, const std::optional<detail::MeshSolve>& coarsest)
       : order_(order), lowest_order_(order), r_(coarse.ratio), third_(coarser && coarser->result && !other_is_finer) {
     const double rp = std::pow(r_, order);
     // `fine` is the result judged; when the other mesh is the finer one, the error of the coarser
@@ -34,11 +36,26 @@ class Gci {
       r2_ = coarser->ratio;
       denom2_ = (std::pow(r2_, order) - 1.0) * rp;
     }
+    // The fourth mesh counts only where it passed the back-end's checks and all four are successive
+    // uniform coarsenings: an observed order means nothing otherwise.
+    fourth_ = third_ && coarsest && coarsest->result && coarsest->ratio > 1 &&
+              severity(coarsest->result->summary.status) < severity(Status::NumericalIssue) &&
+              uniform_coarsening(fine, *coarse.result, r_) && uniform_coarsening(*coarse.result, *coarser->result, r2_) &&
+              uniform_coarsening(*coarser->result, *coarsest->result, coarsest->ratio);
+    if (fourth_) r3_ = coarsest->ratio;
   }
 
+  /// How close to the formal order both observed orders must be (as the extrapolation's check of
+  /// its next order, extrapolation.hpp).
+  static constexpr double kConfirmWithin = 0.2;
+
   bool third() const { return third_; }
+  bool fourth() const { return fourth_; }
   /// The lowest observed order used so far (frequencies), the formal order if none.
   double lowest_order() const { return lowest_order_; }
+  /// How many quantities took the factor of safety 1.25 of a confirmed order, and how many were judged.
+  int confirmed() const { return confirmed_; }
+  int judged() const { return judged_; }
 
   /// Relative error estimate of q (scale: the quantity's size). Where the three meshes show an
   /// order below first (the pair differences resolved, above `noise` relative to the scale, and
@@ -48,8 +65,17 @@ class Gci {
   /// formal order gave 0.21 for an error of 0.55. Frequencies only (a NaN noise skips it): a
   /// point load's deflection converges like h^2 log h, below its formal order on every mesh, and
   /// its two-mesh estimate already holds (rfem's paper plate: 2e-4 off, estimate 6e-4).
-  double operator()(double q, double qc, double qcc, double scale, double noise = kNotMeasured) {
+  /// `qccc` is the quantity on the fourth mesh (NaN: none), for confirmed_order.
+  double operator()(double q, double qc, double qcc, double scale, double noise = kNotMeasured,
+                    double qccc = kNotMeasured) {
+    if (std::isfinite(noise)) ++judged_;
     const double d1 = std::abs(q - qc), d2 = third_ && std::isfinite(qcc) ? std::abs(qc - qcc) : kNotMeasured;
+    if (const double p = confirmed_order(q, qc, qcc, qccc, scale, noise); std::isfinite(p)) {
+      ++confirmed_;
+      const double rp = std::pow(r_, p);
+      const double err = std::max(d1 / (rp - 1.0), d2 / ((std::pow(r2_, p) - 1.0) * rp));
+      return kRoacheGuardFactor * err / scale;
+    }
     double dn = denom_, dn2 = denom2_;
     if (std::isfinite(noise) && std::isfinite(d2) && d1 > noise * scale && d2 > noise * scale) {
       // Only below first order: between that and the formal order (a point load's h^2 log h, a
@@ -70,21 +96,52 @@ class Gci {
   }
 
  private:
-  double order_, lowest_order_, r_, r2_ = kNotMeasured, denom_ = 0, denom2_ = 0;
-  bool third_;
+  /// The order to take with Roache's factor of safety 1.25 (his three-mesh study), where the four
+  /// meshes confirm it: the three differences resolved (above `noise`) and of one sign (monotone
+  /// convergence), and the orders observed on the finer three and on the coarser three both
+  /// within kConfirmWithin of the formal order; then the least of the two and the formal one. NaN
+  /// otherwise (the factor of safety 3 stays). Frequencies only, as the observed order above.
+  double confirmed_order(double q, double qc, double qcc, double qccc, double scale, double noise) const {
+    if (!fourth_ || !std::isfinite(noise) || !std::isfinite(qcc) || !std::isfinite(qccc)) return kNotMeasured;
+    const double e1 = q - qc, e2 = qc - qcc, e3 = qcc - qccc;
+    for (double e : {e1, e2, e3})
+      if (!(std::abs(e) > noise * scale)) return kNotMeasured;
+    if (!(e1 * e2 > 0 && e2 * e3 > 0)) return kNotMeasured;
+    const double p1 = observed_order(std::abs(e1), std::abs(e2), r_, r2_, 0.25, 4.0 * order_);
+    const double p2 = observed_order(std::abs(e2), std::abs(e3), r2_, r3_, 0.25, 4.0 * order_);
+    auto near_formal = [&](double p) { return std::isfinite(p) && std::abs(p - order_) <= kConfirmWithin * order_; };
+    if (!near_formal(p1) || !near_formal(p2)) return kNotMeasured;
+    return std::min({p1, p2, order_});
+  }
+
+  double order_, lowest_order_, r_, r2_ = kNotMeasured, r3_ = kNotMeasured, denom_ = 0, denom2_ = 0;
+  bool third_, fourth_ = false;
+  int confirmed_ = 0, judged_ = 0;
 };
+
+/// The factors of safety the frequencies took, in words.
+std::string safety_words(const Gci& gci) {
+  const std::string usual = fmt::format("{:g} and {:g}", kRoacheSafetyFactor, kRoacheGuardFactor);
+  if (gci.confirmed() == 0) return usual;
+  if (gci.confirmed() == gci.judged()) return fmt::format("{:g} (the order confirmed by the fourth mesh)", kRoacheGuardFactor);
+  return fmt::format("{:g} on {} of {} modes (the order confirmed by the fourth mesh), else {}", kRoacheGuardFactor,
+                     gci.confirmed(), gci.judged(), usual);
+}
 
 /// The frequencies' estimate (worst mode, plus the solve's own bound) into `e`; what exceeds
 /// the tolerance into `problems`.
 void judge_frequencies(const Result& fine, const detail::MeshSolve& coarse, const std::optional<detail::MeshSolve>& coarser,
-                       double order, Gci& gci, ErrorEstimate& e, std::vector<std::string>& problems) {
+                       const std::optional<detail::MeshSolve>& coarsest, double order, Gci& gci, ErrorEstimate& e,
+                       std::vector<std::string>& problems) {
   const auto& f = fine.frequencies_rad_s;
   const auto& c = coarse.result->frequencies_rad_s;
   const std::vector<double> none;
   const auto& cc = gci.third() ? coarser->result->frequencies_rad_s : none;
+  const auto& ccc = gci.fourth() ? coarsest->result->frequencies_rad_s : none;
   const std::size_t n = std::min(f.size(), c.size());
   double noise = 1e-10;
-  for (const Result* x : {&fine, coarse.result, gci.third() ? coarser->result : nullptr})
+  for (const Result* x : {&fine, coarse.result, gci.third() ? coarser->result : nullptr,
+                          gci.fourth() ? coarsest->result : nullptr})
     if (x && std::isfinite(x->summary.diagnostic("frequency_solve_error_bound")))
       noise = std::max(noise, 10.0 * x->summary.diagnostic("frequency_solve_error_bound"));
   double worst = 0;
@@ -92,7 +149,8 @@ void judge_frequencies(const Result& fine, const detail::MeshSolve& coarse, cons
   for (std::size_t i = 0; i < n; ++i) {
     if (f[i] == 0 && c[i] == 0) continue;  // rigid-body modes on both meshes
     const double qcc = i < cc.size() && !(cc[i] == 0 && c[i] != 0) ? cc[i] : kNotMeasured;
-    const double rel = gci(f[i], c[i], qcc, std::max(std::abs(f[i]), std::abs(c[i])), noise);
+    const double qccc = std::isfinite(qcc) && i < ccc.size() && !(ccc[i] == 0 && c[i] != 0) ? ccc[i] : kNotMeasured;
+    const double rel = gci(f[i], c[i], qcc, std::max(std::abs(f[i]), std::abs(c[i])), noise, qccc);
     if (!(rel <= worst)) {
       worst = rel;
       worst_mode = i + 1;
@@ -109,7 +167,7 @@ void judge_frequencies(const Result& fine, const detail::MeshSolve& coarse, cons
   // mesh is advised only where the discretization part is what exceeds it.
   if (!(e.frequencies <= e.tolerance) && !(std::isfinite(solve) && solve > e.tolerance))
     problems.push_back(fmt::format("frequencies: estimated discretization error {:.2g} (mode {}; mesh {} against {}{}, "
-                                   "Richardson of order {}, factors of safety {:g} and {:g}{}) exceeds the tolerance "
+                                   "Richardson of order {}, factors of safety {}{}) exceeds the tolerance "
                                    "{:.2g} ([request] tolerance): use a finer mesh",
                                    e.frequencies, worst_mode, fine.summary.mesh, coarse.spec,
                                    gci.third() ? " and " + coarser->spec : std::string(),
@@ -117,7 +175,7 @@ void judge_frequencies(const Result& fine, const detail::MeshSolve& coarse, cons
                                        ? fmt::format("{:g}, down to the observed {:.2g}: not yet in the asymptotic range",
                                                      order, gci.lowest_order())
                                        : fmt::format("{:g}", order),
-                                   kRoacheSafetyFactor, kRoacheGuardFactor,
+                                   safety_words(gci),
                                    std::isfinite(solve) ? fmt::format(", plus the solve's own bound {:.2g}", solve)
                                                         : std::string(),
                                    e.tolerance));
@@ -226,7 +284,9 @@ void judge_campbell(const Result& fine, const detail::MeshSolve& coarse, const s
 
 /// How the estimate was formed, in words (ErrorEstimate::note).
 std::string estimate_note(const ErrorEstimate& e, const Result& fine, const detail::MeshSolve& coarse,
-                          const std::optional<detail::MeshSolve>& coarser, bool third, bool other_is_finer) {
+                          const std::optional<detail::MeshSolve>& coarser, const std::optional<detail::MeshSolve>& coarsest,
+                          const Gci& gci, bool other_is_finer) {
+  const bool third = gci.third();
   const double order = e.order;
   std::string note;
   if (other_is_finer)
@@ -243,6 +303,10 @@ std::string estimate_note(const ErrorEstimate& e, const Result& fine, const deta
   else
     note = fmt::format("grid convergence index: {:g} |q(mesh {}) - q(mesh {})| / ({:.3g}^{:g} - 1), relative",
                        kRoacheSafetyFactor, fine.summary.mesh, coarse.spec, coarse.ratio, order);
+  if (gci.confirmed() > 0)
+    note += fmt::format("; {} of {} frequencies with factor of safety {:g} and the observed order (at most p) instead, "
+                        "where the fourth mesh {} confirms it (monotone, both observed orders within {:g} % of p)",
+                        gci.confirmed(), gci.judged(), kRoacheGuardFactor, coarsest->spec, 100 * Gci::kConfirmWithin);
   if (std::isfinite(e.frequencies_solve))
     note += fmt::format("; frequencies plus the solve's own error bound {:.2g}", e.frequencies_solve);
   return note;
@@ -251,21 +315,25 @@ std::string estimate_note(const ErrorEstimate& e, const Result& fine, const deta
 }  // namespace
 
 detail::Verdict detail::judge_discretization(const Scene& scene, double order, const Result& fine, const MeshSolve& coarse,
-                                             const std::optional<MeshSolve>& coarser, bool other_is_finer) {
+                                             const std::optional<MeshSolve>& coarser, bool other_is_finer,
+                                             const std::optional<MeshSolve>& coarsest) {
   ErrorEstimate e;
   e.tolerance = scene.request.tolerance;
   e.coarse_mesh = coarse.spec;
   e.ratio = coarse.ratio;
   e.order = order;
   e.safety_factor = kRoacheSafetyFactor;
-  Gci gci(order, coarse, coarser, other_is_finer);
+  Gci gci(order, coarse, coarser, other_is_finer, fine, coarsest);
   if (gci.third()) e.coarser_mesh = coarser->spec;
   std::vector<std::string> problems;
   if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty())
-    judge_frequencies(fine, coarse, coarser, order, gci, e, problems);
+    judge_frequencies(fine, coarse, coarser, coarsest, order, gci, e, problems);
   if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, scene.geometry.length, gci, e, problems);
   if (scene.rotor && !fine.campbell.empty()) judge_campbell(fine, coarse, coarser, gci, e, problems);
-  e.note = estimate_note(e, fine, coarse, coarser, gci.third(), other_is_finer);
+  // Every judged quantity with a confirmed order: the factor of the whole estimate is 1.25.
+  if (gci.judged() > 0 && gci.confirmed() == gci.judged() && scene.request.probes.empty() && !scene.rotor)
+    e.safety_factor = kRoacheGuardFactor;
+  e.note = estimate_note(e, fine, coarse, coarser, coarsest, gci, other_is_finer);
   return {e, problems};
 }
 

@@ -95,10 +95,6 @@ double observed_order(double d1, double d2, double r, double r2, double lo, doub
   return lo;
 }
 
-namespace {
-
-/// One ratio per pair: the counts of every direction scale alike (errors C_x h_x^p + C_y h_y^p
-/// cancel only then).
 bool uniform_coarsening(const Result& a, const Result& b, double r) {
   try {
     const Discretization da = Discretization::parse(a.summary.mesh), db = Discretization::parse(b.summary.mesh);
@@ -110,6 +106,8 @@ bool uniform_coarsening(const Result& a, const Result& b, double r) {
     return false;
   }
 }
+
+namespace {
 
 /// The meshes of one extrapolation: the judged one and its coarser ones, with their ratios.
 struct Meshes {

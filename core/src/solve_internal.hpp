@@ -60,9 +60,12 @@ void report_extrapolated(Result& r, const ReportedValues& v);
 
 /// The discretization error of `fine` (result.hpp, ErrorEstimate) from `coarse` and, where given,
 /// `coarser` (the next coarser mesh). With other_is_finer, `coarse` is in fact a finer mesh (the
-/// judged one has no coarser): the roles of the pair swap and `coarser` is not used.
+/// judged one has no coarser): the roles of the pair swap and `coarser` is not used. `coarsest`
+/// (the mesh coarser than `coarser`, where there is one) can confirm the frequencies' order: Roache's
+/// factor of safety 1.25 instead of 3 where it does (discretization_error.cpp, Gci).
 Verdict judge_discretization(const Scene& scene, double order, const Result& fine, const MeshSolve& coarse,
-                             const std::optional<MeshSolve>& coarser = std::nullopt, bool other_is_finer = false);
+                             const std::optional<MeshSolve>& coarser = std::nullopt, bool other_is_finer = false,
+                             const std::optional<MeshSolve>& coarsest = std::nullopt);
 
 /// The back-end's solve of a scene on the mesh kept (the transient's modal solves), and its
 /// estimated run time, s.

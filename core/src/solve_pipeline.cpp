@@ -256,13 +256,16 @@ void SolvePipeline::estimate_error() {
   try {
     Result cr = solve_light(light_, coarse_->mesh);
     Result cr2;
-    std::optional<MeshSolve> third;
+    std::optional<MeshSolve> third, fourth;
+    std::optional<Result> cr3;
     if (coarser2_) {
       cr2 = solve_light(light_, coarser2_->mesh);
       third = MeshSolve{coarser2_->mesh.spec(), coarser2_->ratio, &cr2};
+      if (coarser3_) cr3 = solve_optional(coarser3_->mesh);
+      if (cr3) fourth = MeshSolve{coarser3_->mesh.spec(), coarser3_->ratio, &*cr3};
     }
     verdict_ = judge_discretization(scene_, coarse_->order, result_, MeshSolve{coarse_->mesh.spec(), coarse_->ratio, &cr},
-                                    third, check_is_finer_);
+                                    third, check_is_finer_, fourth);
     for (const Result* c : {&std::as_const(cr), &std::as_const(cr2)})
       if (c->summary.status != Status::Success && !(c == &cr2 && !coarser2_))
         estimate_warnings_.push_back(fmt::format("the coarser mesh {} of the error estimate was {}: {}",
@@ -273,12 +276,11 @@ void SolvePipeline::estimate_error() {
       kept_.ratio2 = coarser2_->ratio;
       kept_.H = std::move(cr);
       kept_.H2 = std::move(cr2);
-      if (coarser3_)
-        if (std::optional<Result> cr3 = solve_optional(coarser3_->mesh)) {
-          kept_.four = true;
-          kept_.ratio3 = coarser3_->ratio;
-          kept_.H4 = std::move(*cr3);
-        }
+      if (cr3) {
+        kept_.four = true;
+        kept_.ratio3 = coarser3_->ratio;
+        kept_.H4 = std::move(*cr3);
+      }
     }
   } catch (const std::bad_alloc&) {
     throw;

@@ -50,6 +50,14 @@ void SolvePipeline::refine_mesh() {
   }
 }
 
+namespace {
+/// The window's fourth mesh (4H), where it has one: it can confirm the estimate's order.
+std::optional<MeshSolve> fourth_of(const RefinementWindow& w) {
+  if (!w.third || !w.r3) return std::nullopt;
+  return MeshSolve{w.r3->summary.mesh, w.ratio3, &*w.r3};
+}
+}  // namespace
+
 /// The first solves of the refinement (4H, 2H, H and h, coarse to fine) and the verdict on h.
 RefinementWindow SolvePipeline::start_refinement() {
   RefinementWindow w;
@@ -65,7 +73,8 @@ RefinementWindow SolvePipeline::start_refinement() {
   w.cur = solve_light(light_, check_is_finer_ ? coarse_->mesh : mesh_);
   w.ratio_prev = coarse_->ratio;
   w.prev_spec = check_is_finer_ ? mesh_.spec() : coarse_->mesh.spec();
-  verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, w.ratio_prev, &w.prev}, w.third);
+  verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, w.ratio_prev, &w.prev}, w.third,
+                                  false, fourth_of(w));
   if (check_is_finer_) final_mesh_ = coarse_->mesh;
   return w;
 }
@@ -132,7 +141,8 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   w.cur = std::move(trial);
   last_estimate = light_estimate;
   last_time = w.cur.summary.total_time_s;
-  verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, ratio, &w.prev}, w.third);
+  verdict_ = judge_discretization(scene_, coarse_->order, w.cur, MeshSolve{w.prev_spec, ratio, &w.prev}, w.third, false,
+                                  fourth_of(w));
   final_mesh_ = *next;
   return true;
 }

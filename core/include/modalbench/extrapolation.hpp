@@ -41,6 +41,10 @@ inline constexpr double kRoacheSafetyFactor = 3.0, kRoacheGuardFactor = 1.25;
 /// sign).
 double observed_order(double d1, double d2, double r, double r2, double lo, double hi);
 
+/// Whether mesh b is mesh a coarsened by r in every direction (every count divided by r): errors
+/// C_x h_x^p + C_y h_y^p scale by one ratio only then, and an observed order means something.
+bool uniform_coarsening(const Result& a, const Result& b, double r);
+
 /// One mesh of the extrapolation: its result and how much coarser it is than the next finer one.
 struct ExtrapolationMesh {
   const Result* result = nullptr;

@@ -143,7 +143,7 @@ struct ErrorEstimate {
   std::string coarse_mesh;            ///< the mesh it was checked against ("" when none)
   std::string coarser_mesh;           ///< the third mesh, 2H ("" when the family has none)
   double ratio = kNotMeasured, order = kNotMeasured;
-  double safety_factor = kNotMeasured;  ///< the factor of the finest pair (3)
+  double safety_factor = kNotMeasured;  ///< the finest pair's: 3, or 1.25 where a fourth mesh confirmed every judged order
   std::string note;                   ///< how it was made, or why none was
 };
 
