@@ -287,6 +287,7 @@ int run_study(const std::string& spec, const std::string& out, const std::string
 }  // namespace
 
 int main(int argc, char** argv) {
+  modalbench::reuse_freed_memory();
   CLI::App app{"modalbench: which beam or plate model to trust, how accurate, at what cost"};
   app.require_subcommand(1);
   auto* list = app.add_subcommand("list", "list the built-in scenes and the back-ends");

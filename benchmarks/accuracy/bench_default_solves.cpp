@@ -23,6 +23,7 @@
 using namespace modalbench;
 
 int main(int argc, char** argv) {
+  reuse_freed_memory();  // as the command line does (main.cpp)
   const std::string filter = argc > 1 ? argv[1] : "";
   std::vector<std::filesystem::path> files;
   for (const std::string& f : scene_files(MODALBENCH_SCENES_DIR))  // sorted

@@ -89,6 +89,7 @@ struct Row {
 }  // namespace
 
 int main(int argc, char** argv) {
+  reuse_freed_memory();  // as the command line does (main.cpp)
   const double max_time = argc > 1 ? std::atof(argv[1]) : 60.0;
   const std::string filter = argc > 2 ? argv[2] : "";
   const Registry reg = make_default_registry();

@@ -75,6 +75,8 @@ AssemblyInfo assemble_into(Tri& K, const LineAnalysis::ClassLine& c, Scalar lamb
     info.log_poles += log_tdf_of(*hit);
     const auto* left = c.condition_at(x, static_cast<std::size_t>(i));
     const auto* right = c.condition_at(x, static_cast<std::size_t>(i) + 1);
+    if (left && left->identity) left = nullptr;
+    if (right && right->identity) right = nullptr;
     if (left || right) {
       Mat k = hit->K;
       if (left) transform_end(k, left->B, mc, true);

@@ -76,10 +76,13 @@ End class_end(const LineAnalysis::ClassLine& l, const EndCondition& end, double 
     int r = 0;
     for (Eigen::Index i = 0; i < sv.size(); ++i)
       if (sv[i] > 1e-10) ++r;
-    Nc = svd.matrixU().leftCols(r);
+    // Every motion of the class admissible (a free end): any basis of the class's coordinates
+    // will do, and the identity spares each assembly the transformation of the end blocks.
+    Nc = r == mc ? Eigen::MatrixXd::Identity(mc, mc) : Eigen::MatrixXd(svd.matrixU().leftCols(r));
   }
   ce.n_free = static_cast<int>(Nc.cols());
   ce.B = Eigen::MatrixXd::Identity(mc, mc);
+  ce.identity = ce.n_free == 0 || ce.n_free == mc;  // held throughout, or Nc = I
   if (ce.n_free > 0) {
     Eigen::HouseholderQR<Eigen::MatrixXd> qr(Nc);
     const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(mc, mc);

@@ -30,6 +30,7 @@ struct LineAnalysis::ClassLine {
   struct End {
     Eigen::MatrixXd B;  // mc x mc orthogonal; the first n_free columns are the admissible motions
     int n_free = 0;
+    bool identity = false;  // B = I (every motion admissible): the end blocks need no transformation
     Eigen::MatrixXd K;  // springs on those coordinates
     double x = 0;
     Eigen::MatrixXd Mc;       // point masses, mc x mc in class coordinates (W^T mass W, unscaled); empty: none

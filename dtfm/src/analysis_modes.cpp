@@ -317,6 +317,36 @@ void LineAnalysis::repolish_near_poles(ClassLine& c, const Mesh& mesh, double la
   }
 }
 
+/// A free plate's rigid threshold (modes(), where the count does not place its rigid motions within
+/// +-delta): the least decade t = 10^j delta up to 1e-4 of the scale where the count finds exactly
+/// the rigid motions below t, none below -t, and no other below 100 t. Once t is past the rounding
+/// of the rigid motions' places, the first two hold up to the elastic modes: the least such decade
+/// is found by bisection (NAFEMS FV12 on 180 strips: 9 counts instead of 15), then checked whole;
+/// where the top decade does not hold them, or the check fails, the decades are tried in turn.
+double LineAnalysis::plate_rigid_threshold(double delta, double scale, const std::function<int(double)>& total) const {
+  const int rbm = model_.rigid_body_motions;
+  std::vector<double> t;
+  for (double x = 10.0 * delta; x <= 1e-4 * scale; x *= 10.0) t.push_back(x);
+  auto clean = [&](double x) { return total(x) == rbm && total(-x) == 0; };
+  auto whole = [&](double x) { return clean(x) && total(100.0 * x) == rbm; };
+  std::size_t from = 0;
+  if (!t.empty() && clean(t.back())) {
+    std::size_t lo = 0, hi = t.size() - 1;  // clean at hi; the least clean decade lies in [lo, hi]
+    while (lo < hi) {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      if (clean(t[mid]))
+        hi = mid;
+      else
+        lo = mid + 1;
+    }
+    if (total(100.0 * t[hi]) == rbm) return t[hi];
+    from = hi + 1;
+  }
+  for (std::size_t j = from; j < t.size(); ++j)
+    if (whole(t[j])) return t[j];
+  return delta;
+}
+
 ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   ModeList out;
   if (k <= 0) return out;
@@ -347,13 +377,8 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   // as before.
   double rigid_below = delta;
   if (model_.kind == SceneKind::Plate && model_.rigid_body_motions > 0 &&
-      (total(delta) != model_.rigid_body_motions || total(-delta) != 0)) {
-    for (double t = 10.0 * delta; t <= 1e-4 * scale; t *= 10.0)
-      if (total(t) == model_.rigid_body_motions && total(-t) == 0 && total(100.0 * t) == model_.rigid_body_motions) {
-        rigid_below = t;
-        break;
-      }
-  }
+      (total(delta) != model_.rigid_body_motions || total(-delta) != 0))
+    rigid_below = plate_rigid_threshold(delta, scale, total);
   rigid_shift_ = rigid_below;
   if (const int neg = total(-rigid_below); neg > 0)
     throw std::runtime_error(fmt::format("the prism model has {} negative eigenvalue(s) omega^2 < 0: unstable", neg));

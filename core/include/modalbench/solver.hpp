@@ -116,6 +116,11 @@ struct CoarserMesh {
 /// 80 % of the memory this process may use (physical memory, RLIMIT_AS, RLIMIT_DATA), bytes.
 double default_memory_limit();
 
+/// Lets the allocator keep freed blocks of up to 64 MiB for reuse instead of returning them to the
+/// system (glibc: mallopt). A process-wide setting: the command-line tool and the benchmarks call it
+/// once at start; a library user decides for their own process.
+void reuse_freed_memory();
+
 /// What a solver can compute for a scene, or why not.
 struct Capability {
   bool modes = false, statics = false, frf = false;

@@ -203,6 +203,8 @@ class LineAnalysis {
   void repolish_near_poles(ClassLine& c, const Mesh& mesh, double lambda_max, std::vector<double>& vals,
                            ModeList& out, SliceStats* st);
   double family_share(ClassLine& c, double lambda);
+  /// A free plate's rigid threshold from the total count over its classes (analysis_modes.cpp).
+  double plate_rigid_threshold(double delta, double scale, const std::function<int(double)>& total) const;
   /// The lowest eigenvalues of class c, `below` of them under the count's threshold: rigid-body
   /// modes and near-rigid ones (analysis_modes.cpp).
   struct NearRigid {
