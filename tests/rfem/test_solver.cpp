@@ -67,6 +67,19 @@ BOOST_AUTO_TEST_CASE(meshes_are_valid_and_refine) {
   }
 }
 
+// A plate mesh of multiples of 8 grows by the least half-integer factor at least the one asked
+// that keeps its counts multiples of 8 (uniform coarsenings of each other, for the extrapolation).
+BOOST_AUTO_TEST_CASE(plate_refinement_keeps_multiples_of_8) {
+  const RfemSolver s;
+  const Scene plate = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
+  auto finer = [&](const char* mesh, double factor) { return s.finer_mesh(plate, Discretization::parse(mesh), factor)->spec(); };
+  BOOST_TEST(finer("112x80", 1.29) == "168x120");  // 1.5 keeps 8 | 168, 120
+  BOOST_TEST(finer("56x40", 1.29) == "112x80");    // 84 x 60 is not: 2
+  BOOST_TEST(finer("112x80", 2.2) == "280x200");   // 2.5
+  BOOST_TEST(finer("56x40", 2.2) == "168x120");    // 2.5 gives 140 x 100: 3
+  BOOST_TEST(finer("56x40", 4.0) == "224x160");
+}
+
 BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
   const RfemSolver s;
   const Scene beam = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
