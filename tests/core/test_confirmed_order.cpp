@@ -15,6 +15,7 @@
 
 #include "modalbench/scene.hpp"
 #include "modalbench/solver.hpp"
+#include "cantilever_scene.hpp"
 
 using namespace modalbench;
 
@@ -53,30 +54,9 @@ class SeriesSolver final : public Solver {
   int coarsest_;
 };
 
-const char* kScene = R"(
-[scene]
-name = "series"
-kind = "beam"
-physics = "bending"
-theory = "euler-bernoulli"
-[geometry]
-length = 1.0
-width = 0.02
-height = 0.02
-[material]
-E = 2.1e11
-nu = 0.3
-rho = 7850.0
-[supports]
-x0 = "clamped"
-xL = "free"
-[request]
-modes = 1
-tolerance = 1.0
-)";
-
 Result on_mesh_32(Series s, int coarsest = 4) {
-  const Scene scene = parse_scene(kScene, "series.toml");
+  Scene scene = testing::cantilever_scene("series", 1);
+  scene.request.tolerance = 1.0;  // judged, not refined
   const SeriesSolver b(s, coarsest);
   return b.solve(scene, Discretization::parse("32"), Options{});
 }

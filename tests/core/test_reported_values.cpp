@@ -15,6 +15,7 @@
 #include "modalbench/json_output.hpp"
 #include "modalbench/scene.hpp"
 #include "modalbench/solver.hpp"
+#include "cantilever_scene.hpp"
 
 using namespace modalbench;
 
@@ -42,29 +43,8 @@ class Series final : public Solver {
   }
 };
 
-const char* kScene = R"(
-[scene]
-name = "series"
-kind = "beam"
-physics = "bending"
-theory = "euler-bernoulli"
-[geometry]
-length = 1.0
-width = 0.02
-height = 0.02
-[material]
-E = 2.1e11
-nu = 0.3
-rho = 7850.0
-[supports]
-x0 = "clamped"
-xL = "free"
-[request]
-modes = 1
-)";
-
 Result default_path(double tolerance) {
-  Scene s = parse_scene(kScene, "series.toml");
+  Scene s = testing::cantilever_scene("series", 1);
   s.request.tolerance = tolerance;
   Options o;
   o.refine_to_tolerance = true;
@@ -91,7 +71,7 @@ BOOST_AUTO_TEST_CASE(the_extrapolated_values_answer_only_where_their_own_estimat
   BOOST_TEST(rel(loose.extrapolated.frequencies_rad_s.at(0), kF0) <= x_estimate);
 
   // Between the two: the extrapolated value answers, says so, and keeps the mesh's.
-  const Scene s = parse_scene(kScene, "series.toml");
+  const Scene s = testing::cantilever_scene("series", 1);
   const Result mid = default_path(std::sqrt(x_estimate * mesh_estimate));
   BOOST_TEST((mid.summary.status == Status::Success), mid.summary.message);
   BOOST_TEST(mid.extrapolated.frequencies_reported);

@@ -10,6 +10,7 @@
 
 #include "modalbench/scene.hpp"
 #include "modalbench/solver.hpp"
+#include "cantilever_scene.hpp"
 
 using namespace modalbench;
 
@@ -37,27 +38,6 @@ class Slow final : public Solver {
   double seconds_;
 };
 
-const char* kScene = R"(
-[scene]
-name = "plan"
-kind = "beam"
-physics = "bending"
-theory = "euler-bernoulli"
-[geometry]
-length = 1.0
-width = 0.02
-height = 0.02
-[material]
-E = 2.1e11
-nu = 0.3
-rho = 7850.0
-[supports]
-x0 = "clamped"
-xL = "free"
-[request]
-modes = 2
-)";
-
 std::size_t plan_warnings(const Result& r) {
   std::size_t n = 0;
   for (const auto& w : r.summary.warnings) n += w.find("times the estimate") != std::string::npos;
@@ -67,7 +47,7 @@ std::size_t plan_warnings(const Result& r) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(a_run_far_past_its_plan_says_so) {
-  const Scene s = parse_scene(kScene, "plan.toml");
+  const Scene s = testing::cantilever_scene("plan", 2);
   Options o;
   o.estimate_error = false;
   const Result slow = Slow(1.1).solve(s, Discretization::parse("4"), o);
