@@ -349,8 +349,8 @@ void DtfmSolver::do_solve(const Scene& scene, const Discretization& mesh, const 
           "{} mode(s) labelled unknown: their rigid-section share of kinetic energy is below one half", unknown));
     if (!ml.count_consistent) sum.raise(Status::NumericalIssue, "dtfm: " + ml.count_message);
     // The solve's own error bound on the frequencies (half the eigenvalues'): the near-rigid
-    // modes' Rayleigh-Ritz bound and the bracket of any value polished only to the determinant's
-    // rounding floor.
+    // modes' Rayleigh-Ritz bound, the bracket of any value polished only to the determinant's
+    // rounding floor, and a plate's polish tolerance where it followed the request's.
     const double polished = polish_from_tolerance ? controls.rel_tol : 0.0;
     if (ml.near_rigid > 0 || ml.polish_floor_width > 0 || polished > 0)
       sum.set_diagnostic("frequency_solve_error_bound",
