@@ -120,6 +120,7 @@ BOOST_AUTO_TEST_CASE(differences_that_change_sign_do_not_confirm) {
   const auto& e = r.summary.error_estimate;
   BOOST_TEST(e.safety_factor == 3.0);
   BOOST_TEST(!says_confirmed(r));
+  BOOST_TEST(e.frequencies >= true_error(r));
 }
 
 BOOST_AUTO_TEST_CASE(three_meshes_keep_the_factor_of_safety_3) {
