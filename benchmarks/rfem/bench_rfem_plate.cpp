@@ -24,6 +24,7 @@ using namespace modalbench::rfem;
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
+  const int nx = argc > 3 ? std::atoi(argv[2]) : 99, ny = argc > 3 ? std::atoi(argv[3]) : 59;
   const Scene base = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
   fmt::print("plate {} x {} x {} m, mesh 99x59 fragments = 100 x 60 RFEs, 8 lowest modes, median of {} after a warm-up\n",
              base.geometry.length, base.geometry.width, base.geometry.height, repeats);
@@ -33,8 +34,8 @@ int main(int argc, char** argv) {
         Scene s = base;
         s.theory = theory;
         PlateOptions po;
-        po.nx = 99;
-        po.ny = 59;
+        po.nx = nx;
+        po.ny = ny;
         Modes md;
         long n = 0, m = 0, body = 0;
         double t_build = 0, t_asm = 0;

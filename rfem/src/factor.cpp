@@ -1,6 +1,7 @@
 #include "modalbench/rfem/factor.hpp"
 
 #include "analysis_detail.hpp"
+#include "supernodal_ldlt.hpp"
 
 #include <amd.h>
 
@@ -117,6 +118,11 @@ std::vector<int> entry_map(const SpMat& super, const SpMat& sub) {
 }
 }  // namespace
 
+KktLdlt::KktLdlt() : super_(std::make_unique<detail::SupernodalLdlt>()) {}
+KktLdlt::~KktLdlt() = default;
+
+Eigen::VectorXd KktLdlt::pivots() const { return use_super_ ? super_->vectorD() : ldlt_.vectorD(); }
+
 void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G, const std::vector<int>& groups) {
   SpMat compressed;
   if (!pattern_in.isCompressed()) {
@@ -217,7 +223,9 @@ void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G, const std::vector
     from_gtg_[p] = gtg_of[k];
     from_g_[p] = g_of[k];
   }
-  ldlt_.analyzePattern(K_);
+  // Supernodal where CHOLMOD's analysis of this order finds it pays (plates), else simplicial.
+  use_super_ = super_->analyze(K_);
+  if (!use_super_) ldlt_.analyzePattern(K_);
   analysed_ = true;
 }
 
@@ -243,6 +251,7 @@ bool KktLdlt::factorize(const SpMat& A_in) {
     kv[p] = v;
   }
   diag_ = K_.diagonal();
+  if (use_super_) return super_->factorize(K_);
   ldlt_.factorize(K_);
   return ldlt_.info() == Eigen::Success;
 }
@@ -257,21 +266,25 @@ void KktLdlt::solve_into(const double* b, double* x) const {
   work_.setZero(n_ + m_);
   for (long i = 0; i < n_; ++i) work_[pos_[i]] = b[i];
   // In place: L, D, L' (natural ordering: the permutation is ours, applied above).
-  ldlt_.matrixL().solveInPlace(work_);
-  work_.array() /= ldlt_.vectorD().array();
-  ldlt_.matrixU().solveInPlace(work_);
+  if (use_super_) {
+    super_->solve_in_place(work_.data());
+  } else {
+    ldlt_.matrixL().solveInPlace(work_);
+    work_.array() /= ldlt_.vectorD().array();
+    ldlt_.matrixU().solveInPlace(work_);
+  }
   for (long i = 0; i < n_; ++i) x[i] = work_[pos_[i]];
 }
 
 long KktLdlt::negative_count() const {
-  const Eigen::VectorXd& D = ldlt_.vectorD();
+  const Eigen::VectorXd D = pivots();
   long neg = 0;
   for (long k = 0; k < D.size(); ++k) neg += D[k] < 0;
   return neg - m_;
 }
 
 double KktLdlt::smallest_primal_pivot_ratio(long* where) const {
-  const Eigen::VectorXd& D = ldlt_.vectorD();
+  const Eigen::VectorXd D = pivots();
   double worst = std::numeric_limits<double>::infinity();
   for (long i = 0; i < n_; ++i) {
     const long k = pos_[i];

@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <initializer_list>
+#include <limits>
 
 #include "modalbench/rfem/factor.hpp"
 #include "rfem_test_helpers.hpp"
@@ -243,6 +244,42 @@ BOOST_AUTO_TEST_CASE(sturm_count_equals_the_dense_count) {
       BOOST_REQUIRE(ldlt.factorize(SpMat(sys.K - mu * sys.M)));
       BOOST_TEST(ldlt.negative_count() == k);
     }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(supernodal_ldlt_counts_and_solves_on_a_plate_grid) {
+  // A plate of 20 x 14 fragments is large enough for CHOLMOD's analysis to choose supernodes, so
+  // KktLdlt takes its supernodal LDL': the Sturm count must equal the dense count of the
+  // constrained pencil, with and without multipliers, and a solve at a shift below the spectrum
+  // (A positive definite on G z = 0: a backward-stable factorization) must leave a residual at
+  // the rounding of A.
+  PlateOptions o;
+  o.nx = 20;
+  o.ny = 14;
+  const Support p = Support::named("pinned"), c = Support::named("clamped");
+  for (auto [t, shear] : {std::pair{Theory::Mindlin, RigidShear::Multipliers}, {Theory::Kirchhoff, RigidShear::Multipliers}}) {
+    o.rigid_shear = shear;
+    const System sys = assemble(build_plate(plate_scene(t, p, p, c, p), o));
+    const Eigen::VectorXd lam = dense_eigenvalues(sys);
+    KktLdlt ldlt;
+    ldlt.analyze(SpMat(sys.K + sys.M), sys.G);
+    BOOST_TEST_REQUIRE(ldlt.supernodal());
+    for (int k : {1, 5, 9, 40}) {
+      const double mu = 0.5 * (lam[k - 1] + lam[k]);
+      BOOST_REQUIRE(ldlt.factorize(SpMat(sys.K - mu * sys.M)));
+      BOOST_TEST(ldlt.negative_count() == k);
+    }
+    const SpMat A = sys.K + lam[0] * sys.M;  // sigma = -lambda_1
+    BOOST_REQUIRE(ldlt.factorize(A));
+    BOOST_TEST(ldlt.negative_count() == 0);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(sys.n(), -1.0, 2.0).array().sin().matrix();
+    const Eigen::VectorXd x = ldlt.solve(b);
+    // On G x = 0, A x - b is a combination of the constraint rows (the multipliers' forces).
+    const Eigen::MatrixXd N = constraint_basis(sys);
+    const Eigen::VectorXd r = N.transpose() * (A * x - b);
+    const double scale = dense(A).cwiseAbs().colwise().sum().maxCoeff() * x.norm() + b.norm();
+    BOOST_TEST(r.norm() <= 1e3 * std::numeric_limits<double>::epsilon() * scale);
+    if (sys.m() > 0) BOOST_TEST((sys.G * x).norm() <= 1e3 * std::numeric_limits<double>::epsilon() * x.norm());
   }
 }
 

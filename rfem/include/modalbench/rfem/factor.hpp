@@ -25,6 +25,10 @@
 
 namespace modalbench::rfem {
 
+namespace detail {
+class SupernodalLdlt;
+}
+
 /// Fill-reducing elimination order of a symmetric pattern (SuiteSparse AMD): order[k] is the
 /// unknown eliminated k-th. With `groups` (groups[i]: the group of unknown i, e.g. the rigid
 /// element it moves), AMD orders the quotient graph of the groups and each group's unknowns are
@@ -39,6 +43,10 @@ std::vector<long> dependent_rows(const SpMat& G);
 
 class KktLdlt {
  public:
+  KktLdlt();
+  ~KktLdlt();
+  KktLdlt(const KktLdlt&) = delete;
+  KktLdlt& operator=(const KktLdlt&) = delete;
   /// Orders (amd_order with `groups`) and analyses for A's pattern (union of every A to be
   /// factored) and G.
   void analyze(const SpMat& pattern, const SpMat& G, const std::vector<int>& groups = {});
@@ -54,8 +62,12 @@ class KktLdlt {
   double smallest_primal_pivot_ratio(long* where) const;
   long n() const { return n_; }
   long m() const { return m_; }
+  /// True where the factor is supernodal (plates: CHOLMOD's analysis found dense fronts), false
+  /// where it is Eigen's simplicial LDL' (beams).
+  bool supernodal() const { return use_super_; }
 
  private:
+  Eigen::VectorXd pivots() const;  ///< D
   long n_ = 0, m_ = 0;
   double s_ = 1;                       // constraint scaling
   Eigen::VectorXi pos_;                // new position of old unknown (primal 0..n-1, multipliers n..)
@@ -67,6 +79,8 @@ class KktLdlt {
   std::vector<int> from_a_, from_gtg_, from_g_;
   long a_nnz_ = 0;
   Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+  std::unique_ptr<detail::SupernodalLdlt> super_;  // the same factor, supernodal, where it pays
+  bool use_super_ = false;
   Eigen::VectorXd diag_;               // permuted diagonal of the last factored matrix
   mutable Eigen::VectorXd work_;       // permuted right-hand side / solution
   bool analysed_ = false;

@@ -1,0 +1,57 @@
+#pragma once
+// Supernodal LDL' without pivoting, in a given elimination order (internal to rfem's factor.cpp).
+//
+// A = L D L' with L unit lower triangular and D diagonal, eliminated in the natural order of the
+// matrix it is given (the caller permutes: KktLdlt's order places every multiplier after its
+// primal unknowns, which is what makes the pivots exist; no pivoting may change that order).
+// CHOLMOD's symbolic analysis (its supernodes and their row patterns, the order given and not
+// postordered) supplies the structure; the numeric factorization is left-looking over the
+// supernodes, as CHOLMOD's own LL' is: every update from a descendant is one dense product
+// L_d W' (W = L_d D_d restricted to the target's columns) through the BLAS, the diagonal block an
+// unblocked dense LDL' and the rows below it one triangular solve. The inertia of D is then the
+// inertia of A (Sylvester), which is what the Sturm count reads; a simplicial LDL' (Eigen's) gets
+// the same D at a few times the cost on a plate's grid, where the fill is in dense fronts.
+//
+// available() is false where CHOLMOD's analysis chooses a simplicial factor (few flops per entry
+// of L: a beam): the caller keeps its simplicial LDL' there.
+
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+namespace modalbench::rfem::detail {
+
+class SupernodalLdlt {
+ public:
+  SupernodalLdlt();
+  ~SupernodalLdlt();
+  SupernodalLdlt(const SupernodalLdlt&) = delete;
+  SupernodalLdlt& operator=(const SupernodalLdlt&) = delete;
+
+  /// Symbolic analysis of the upper triangle `upper` (CSC, compressed, natural elimination order).
+  /// False if CHOLMOD chose a simplicial factor (nothing is kept then).
+  bool analyze(const Eigen::SparseMatrix<double>& upper);
+  /// Numeric factorization with the values of `upper` (the analysed pattern). False at a pivot
+  /// that is exactly zero or not finite (the factor is then incomplete).
+  bool factorize(const Eigen::SparseMatrix<double>& upper);
+  const Eigen::VectorXd& vectorD() const { return D_; }
+  /// x := A^{-1} x (in place, length n).
+  void solve_in_place(double* x) const;
+  long n() const { return n_; }
+  /// Entries of L stored (the supernodes' dense blocks, explicit zeros included).
+  long stored_entries() const { return static_cast<long>(Lx_.size()); }
+
+ private:
+  long n_ = 0;
+  std::vector<int> super_, pi_, px_, rows_;  // CHOLMOD's supernodal pattern (super, pi, px, s)
+  std::vector<int> column_super_;            // supernode of each column
+  // The lower triangle of A by columns: per column j, the rows i >= j and where A(i, j) sits in
+  // the upper CSC values (A(j, i) there).
+  std::vector<int> low_start_, low_row_, low_src_;
+  std::vector<double> Lx_;
+  Eigen::VectorXd D_;
+  mutable std::vector<double> work_;
+  int max_update_ = 0;  // rows x columns of the largest descendant update
+};
+
+}  // namespace modalbench::rfem::detail
