@@ -22,7 +22,8 @@ void SolvePipeline::refine_mesh() {
     RefinementWindow w = start_refinement();
     // How far the estimates are from what this machine does: later steps are predicted with it.
     double last_estimate = solver_.estimate(light_, final_mesh_, opt_).seconds, last_time = w.cur.summary.total_time_s;
-    for (int step = 0; step < 3 && !verdict_->second.empty() && !extrapolation_answers(w); ++step)
+    const int steps = solver_.refinement_steps(scene_);
+    for (int step = 0; step < steps && !verdict_->second.empty() && !extrapolation_answers(w); ++step)
       if (!refinement_step(w, last_estimate, last_time)) break;
     keep_refinement_solves(w);
     if (w.cur.summary.status != Status::Success && w.cur.summary.status != Status::NotConverged)

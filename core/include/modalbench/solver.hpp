@@ -168,6 +168,9 @@ class Solver {
   virtual std::optional<Discretization> finer_mesh(const Scene&, const Discretization&, double /*factor*/) const {
     return std::nullopt;
   }
+  /// The most refinement steps the default path takes towards the tolerance (finer_mesh's steps:
+  /// a family that refines by small steps takes more of them).
+  virtual int refinement_steps(const Scene&) const { return 3; }
 
   /// Validates the scene and the options, estimates the cost (refused above options' limits),
   /// times, and fills the summary; then calls the back-end, and, for a meshed result, solves the

@@ -62,6 +62,7 @@ class RfemSolver final : public Solver {
                                           const Options& options) const override;
   /// The default mesh refined towards the tolerance (counts times factor).
   std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
+  int refinement_steps(const Scene& scene) const override;
   /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
   ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
