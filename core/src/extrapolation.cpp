@@ -25,6 +25,32 @@ double extrapolation_error(double D, double r, double r2, double p, double s) {
   return denom > 1e-3 * std::abs(c1) ? std::abs(D) * std::abs(c1) / denom : std::numeric_limits<double>::infinity();
 }
 
+/// The order s of R's own sequence R(h), R(H), R(2H), each one Richardson step of order p on the
+/// ratios r, r2 and r3 (H / h, 2H / H, 4H / 2H). A step of ratio r leaves c(r) D h^s of a term
+/// D h^s, so where the ratios differ (a graded refinement: 1.5, 4/3, 1.5) R's errors do not fall
+/// as h^s alone: D2 / D1 = (c(r2) r^s - c(r3) (r r2)^s) / (c(r) - c(r2) r^s), which is
+/// observed_order's r^s (r2^s - 1) / (r^s - 1) on equal ratios. The Mindlin paper plate's
+/// extrapolated frequencies on 168 x 120, 112 x 80, 84 x 60 and 56 x 40 fall at order 3 (their
+/// errors over c(r): ratios 3.45 and 2.34 for steps of 1.5 and 4/3), where the plain form saw 4.1
+/// (and 2.0 one mesh on). Below the range of this form (s <= p, where c vanishes), the plain one's
+/// value, at most p.
+double remainder_order(double d1, double d2, double r, double r2, double r3, double p, double hi) {
+  if (!(d1 != 0) || !(d2 / d1 > 0)) return kNotMeasured;
+  auto ratio_at = [&](double s) {
+    const double c1 = residual_coefficient(r, p, s), c2 = residual_coefficient(r2, p, s), c3 = residual_coefficient(r3, p, s);
+    return (c2 * std::pow(r, s) - c3 * std::pow(r * r2, s)) / (c1 - c2 * std::pow(r, s));
+  };
+  double lo = p * (1 + 1e-3);
+  const double target = d2 / d1;
+  if (!(hi > lo) || target <= ratio_at(lo)) return std::min(p, observed_order(d1, d2, r, r2, 0.25, hi));
+  if (target >= ratio_at(hi)) return hi;
+  for (int it = 0; it < 80; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (ratio_at(mid) < target ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 /// How far the observed order may be from the formal one for the meshes to count as asymptotic.
 constexpr double kAsymptoticOrderTolerance = 0.2;
 
@@ -54,7 +80,7 @@ Extrapolated extrapolate(double q, double qc, double qcc, double qccc, double r,
   const double D1 = rh - rH, D2 = rH - r2H;
   double s_eff = s;
   if (std::abs(D1) > noise && std::abs(D2) > noise) {
-    x.remainder_order = observed_order(D1, D2, r, r2, 0.25, 4 * s);
+    x.remainder_order = remainder_order(D1, D2, r, r2, r3, p, 4 * s);
     if (x.remainder_order < s) s_eff = std::max(p, x.remainder_order);
   }
   const double e1 = extrapolation_error(D1, r, r2, p, s_eff);

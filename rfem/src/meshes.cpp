@@ -133,16 +133,19 @@ double half_integer_factor(const Discretization& mesh, double factor, int k) {
 std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discretization& mesh, double factor) const {
   const bool even_plate = s.is_plate() && mesh.counts.size() == 2 &&
                           std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n >= 2 && n % 2 == 0; });
-  // Where the estimate asks for less than twice the mesh, a plate takes one step of its graded
-  // sequence (x 1.5, then x 4/3, ...): the refinement's last meshes are then at most 1.5 apart, and
-  // the window the estimate and the extrapolation judge lies in the asymptotic range as early as it
-  // can. The jump by the factor asked left the coarse end of the window behind: on the Mindlin
-  // paper plate at 1e-4, 56 x 40 -> 112 x 80 judged mode 8 on 28 x 20 and 14 x 10 (pre-asymptotic,
-  // estimate 1.6e-4 for a true 1.3e-5) and went on to 168 x 120 (1.6 s in all); 56 x 40 -> 84 x 60
-  // -> 112 x 80 meets it there (estimate 4.1e-5 for a true 7.6e-6, 0.61 s). Larger steps jump: graded
-  // steps all the way took 4.7 s where jumps took 1.2 s (a deflection beside a point support at
-  // 1e-3, whose error falls unevenly as the support moves within its cell; 2.1 s with this rule).
-  if (even_plate && factor < 2.0) {
+  // A plate refines by one step of its graded sequence (x 1.5, then x 4/3, ...), whatever factor
+  // is asked, where its errors fall evenly: the refinement's last meshes are then at most 1.5 apart,
+  // and the window the estimate and the extrapolation judge lies in the asymptotic range as early as
+  // it can. One jump by the factor asked left the coarse end of the window behind: the Mindlin
+  // paper plate at 1e-4 went 56 x 40 -> 112 x 80, judged mode 8 on 28 x 20 and 14 x 10 (pre-
+  // asymptotic: estimate 1.6e-4 for a true 1.3e-5) and went on to 168 x 120 (1.6 s in all); graded,
+  // 84 x 60 -> 112 x 80 meets it (0.6 s), and 1e-5 on 168 x 120 (1.9 s, where the jumps took 56 x 40
+  // -> 224 x 160 -> 448 x 320, 13.6 s). Where a probe or a point support or mass sits in the
+  // cells, its error falls unevenly as its place in its cell changes from mesh to mesh, and a
+  // larger step pays (a deflection beside a point support at 1e-3: 4.7 s graded all the way, 2.1 s
+  // so): there only what asks for less than twice the mesh takes a graded step.
+  const bool evenly = s.request.probes.empty() && s.point_supports.empty() && s.masses.empty();
+  if (even_plate && (evenly || factor < 2.0)) {
     Discretization d = graded_step(mesh);
     if (std::max(d.counts[0], d.counts[1]) > 2000) return std::nullopt;
     return d;
@@ -165,9 +168,9 @@ std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discr
 }
 
 int RfemSolver::refinement_steps(const Scene& s) const {
-  // Two more than the other families: a graded step is a third to a half of a doubling's cost
-  // (the Mindlin paper plate at 1e-4 takes two of them).
-  return s.is_plate() ? 5 : Solver::refinement_steps(s);
+  // Twice the other families': two graded steps make one doubling (the Mindlin paper plate at 1e-5
+  // takes three of them).
+  return s.is_plate() ? 6 : Solver::refinement_steps(s);
 }
 
 }  // namespace modalbench::rfem
