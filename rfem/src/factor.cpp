@@ -121,6 +121,8 @@ std::vector<int> entry_map(const SpMat& super, const SpMat& sub) {
 KktLdlt::KktLdlt() : super_(std::make_unique<detail::SupernodalLdlt>()) {}
 KktLdlt::~KktLdlt() = default;
 
+bool KktLdlt::two_thread_solves() const { return use_super_ && super_->two_threads(); }
+
 Eigen::VectorXd KktLdlt::pivots() const { return use_super_ ? super_->vectorD() : ldlt_.vectorD(); }
 
 void KktLdlt::analyze(const SpMat& pattern_in, const SpMat& G, const std::vector<int>& groups) {

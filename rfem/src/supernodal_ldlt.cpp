@@ -2,27 +2,21 @@
 
 #include <cholmod.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numeric>
 #include <stdexcept>
-
-extern "C" {
-void dgemm_(const char* ta, const char* tb, const int* m, const int* n, const int* k, const double* alpha, const double* a,
-            const int* lda, const double* b, const int* ldb, const double* beta, double* c, const int* ldc);
-void dtrsm_(const char* side, const char* uplo, const char* ta, const char* diag, const int* m, const int* n,
-            const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
-void dgemv_(const char* t, const int* m, const int* n, const double* alpha, const double* a, const int* lda,
-            const double* x, const int* incx, const double* beta, double* y, const int* incy);
-void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a, const int* lda, double* x,
-            const int* incx);
-}
 
 namespace modalbench::rfem::detail {
 
 namespace {
-const int kOne = 1;
-const double kPlus = 1.0, kZero = 0.0, kMinus = -1.0;
+// Eigen's dense kernels, not the BLAS: the two threads call them at once, and OpenBLAS 0.3.21's
+// level 3 from two threads gave wrong factors (the Mindlin plate, 168 x 120: "not positive
+// definite" at a shift below the spectrum; right with the same calls on one thread).
+using Stride = Eigen::OuterStride<>;
 
 /// Unblocked LDL' of the leading nscol x nscol block of a supernode (column-major, leading
 /// dimension ld), in place: L below the diagonal, 1 on it, D out. False at a zero or non-finite pivot.
@@ -121,26 +115,87 @@ bool SupernodalLdlt::analyze(const Eigen::SparseMatrix<double>& upper) {
       low_src_[q] = p;
     }
   D_.resize(n);
+  plan_split();
   return true;
 }
 
-bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& upper) {
-  if (super_.empty()) throw std::logic_error("SupernodalLdlt::factorize without a supernodal analysis");
-  if (upper.rows() != n_ || upper.nonZeros() != static_cast<long>(low_row_.size()))
-    throw std::invalid_argument("SupernodalLdlt: matrix pattern differs from the analysed one");
+void SupernodalLdlt::plan_split() {
   const int nsuper = static_cast<int>(super_.size()) - 1;
-  const double* av = upper.valuePtr();
-  std::vector<int> map(static_cast<std::size_t>(n_), 0), head(static_cast<std::size_t>(nsuper), -1),
-      next(static_cast<std::size_t>(nsuper), -1), lpos(static_cast<std::size_t>(nsuper), 0);
-  std::vector<double> W, C, w;
+  std::vector<int> parent(static_cast<std::size_t>(nsuper), -1);
+  std::vector<std::vector<int>> children(static_cast<std::size_t>(nsuper));
+  std::vector<double> weight(static_cast<std::size_t>(nsuper), 0.0);
+  std::vector<int> roots;
+  for (int s = 0; s < nsuper; ++s) {
+    const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
+    weight[static_cast<std::size_t>(s)] += static_cast<double>(nsrow) * nscol;
+    if (nsrow > nscol) {
+      const int p = column_super_[static_cast<std::size_t>(rows_[static_cast<std::size_t>(pi_[s] + nscol)])];
+      parent[static_cast<std::size_t>(s)] = p;
+      children[static_cast<std::size_t>(p)].push_back(s);
+      weight[static_cast<std::size_t>(p)] += weight[static_cast<std::size_t>(s)];
+    } else {
+      roots.push_back(s);
+    }
+  }
+  double total = 0;
+  for (int r : roots) total += weight[static_cast<std::size_t>(r)];
+  // Down the chain of single children from the root: the separators; then the subtrees below it,
+  // heaviest first, each to the lighter of the two threads.
+  std::vector<char> part(static_cast<std::size_t>(nsuper), -1);
+  std::vector<int> below = roots;
+  while (below.size() == 1) {
+    part[static_cast<std::size_t>(below[0])] = 0;
+    below = children[static_cast<std::size_t>(below[0])];
+  }
+  std::sort(below.begin(), below.end(), [&](int a, int b) { return weight[static_cast<std::size_t>(a)] > weight[static_cast<std::size_t>(b)]; });
+  double load[2] = {0, 0};
+  for (int c : below) {
+    const int k = load[0] <= load[1] ? 0 : 1;
+    part[static_cast<std::size_t>(c)] = static_cast<char>(k + 1);
+    load[k] += weight[static_cast<std::size_t>(c)];
+  }
+  for (int s = nsuper - 1; s >= 0; --s)
+    if (part[static_cast<std::size_t>(s)] < 0) part[static_cast<std::size_t>(s)] = part[static_cast<std::size_t>(parent[static_cast<std::size_t>(s)])];
+  // Worth a thread where both shares are a fifth of the factor or more, and the factor is large
+  // enough for the solve to outlast starting one (a plate of 56 x 40 fragments and up).
+  split_ = total >= 1e6 && std::min(load[0], load[1]) >= 0.2 * total;
+  for (auto& v : part_) v.clear();
+  top_column_.assign(static_cast<std::size_t>(n_), 0);
+  if (!split_) return;
+  for (int s = 0; s < nsuper; ++s) {
+    part_[static_cast<std::size_t>(part[static_cast<std::size_t>(s)])].push_back(s);
+    if (part[static_cast<std::size_t>(s)] == 0)
+      for (int j = super_[s]; j < super_[s + 1]; ++j) top_column_[static_cast<std::size_t>(j)] = 1;
+  }
+  for (auto& share : top_share_) share.assign(static_cast<std::size_t>(n_), 0.0);
+}
+
+/// The lists of the left-looking factorization: every finished supernode d waits in the list of
+/// the supernode its next rows (from lpos[d] on) belong to, until that one takes its update. Each
+/// thread links into lists of its own (`head` of the part it runs); `next` and `lpos` are per
+/// supernode, written only by the thread that owns it.
+struct SupernodalLdlt::Lists {
+  std::vector<int> head[3], next, lpos;
+};
+
+/// The factorization's scratch space of one thread.
+struct SupernodalLdlt::Scratch {
+  std::vector<int> map;
+  Aligned W, C;
+  std::vector<double> w;
+};
+
+bool SupernodalLdlt::factor_part(const std::vector<int>& part, int own, const double* av, Lists& l, Scratch& ws) {
+  std::vector<int>& head = l.head[own];
   auto link = [&](int d) {  // d joins the list of the supernode of its next row below lpos
-    const int row_at = pi_[d] + lpos[static_cast<std::size_t>(d)];
+    const int row_at = pi_[d] + l.lpos[static_cast<std::size_t>(d)];
     if (row_at >= pi_[d + 1]) return;
     const int anc = column_super_[static_cast<std::size_t>(rows_[static_cast<std::size_t>(row_at)])];
-    next[static_cast<std::size_t>(d)] = head[static_cast<std::size_t>(anc)];
+    l.next[static_cast<std::size_t>(d)] = head[static_cast<std::size_t>(anc)];
     head[static_cast<std::size_t>(anc)] = d;
   };
-  for (int s = 0; s < nsuper; ++s) {
+  std::vector<int>& map = ws.map;
+  for (int s : part) {
     const int k1 = super_[s], k2 = super_[s + 1], nscol = k2 - k1;
     const int psi = pi_[s], nsrow = pi_[s + 1] - psi;
     double* Ls = Lx_.data() + px_[s];
@@ -150,69 +205,147 @@ bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& upper) {
       for (int p = low_start_[static_cast<std::size_t>(j)]; p < low_start_[static_cast<std::size_t>(j) + 1]; ++p)
         Ls[static_cast<std::ptrdiff_t>(j - k1) * nsrow + map[static_cast<std::size_t>(low_row_[static_cast<std::size_t>(p)])]] +=
             av[low_src_[static_cast<std::size_t>(p)]];
-    // Updates from every descendant whose pattern reaches these columns.
-    for (int d = head[static_cast<std::size_t>(s)]; d >= 0;) {
-      const int dnext = next[static_cast<std::size_t>(d)];
-      const int ndcol = super_[d + 1] - super_[d], pdi = pi_[d], ndrow = pi_[d + 1] - pdi;
-      const int pdi1 = pdi + lpos[static_cast<std::size_t>(d)];
-      int pdi2 = pdi1;
-      while (pdi2 < pdi + ndrow && rows_[static_cast<std::size_t>(pdi2)] < k2) ++pdi2;
-      const int ndrow1 = pdi2 - pdi1, ndrow2 = pdi + ndrow - pdi1;
-      const double* Ld = Lx_.data() + px_[d] + (pdi1 - pdi);
-      const double* Dd = D_.data() + super_[d];
-      W.resize(static_cast<std::size_t>(ndrow1) * static_cast<std::size_t>(ndcol));
-      for (int k = 0; k < ndcol; ++k)
-        for (int i = 0; i < ndrow1; ++i)
-          W[static_cast<std::size_t>(k) * static_cast<std::size_t>(ndrow1) + static_cast<std::size_t>(i)] =
-              Ld[static_cast<std::ptrdiff_t>(k) * ndrow + i] * Dd[k];
-      C.resize(static_cast<std::size_t>(ndrow2) * static_cast<std::size_t>(ndrow1));
-      dgemm_("N", "T", &ndrow2, &ndrow1, &ndcol, &kPlus, Ld, &ndrow, W.data(), &ndrow1, &kZero, C.data(), &ndrow2);
-      for (int j = 0; j < ndrow1; ++j) {
-        double* target = Ls + static_cast<std::ptrdiff_t>(rows_[static_cast<std::size_t>(pdi1 + j)] - k1) * nsrow;
-        const double* cj = C.data() + static_cast<std::ptrdiff_t>(j) * ndrow2;
-        for (int i = j; i < ndrow2; ++i) target[map[static_cast<std::size_t>(rows_[static_cast<std::size_t>(pdi1 + i)])]] -= cj[i];
+    // Updates from every descendant whose pattern reaches these columns (a separator's come from
+    // the lists of all three parts; a subtree's from its own).
+    for (int from = 0; from < 3; ++from) {
+      if (from != own && own != 0) continue;
+      for (int d = l.head[from][static_cast<std::size_t>(s)]; d >= 0;) {
+        const int dnext = l.next[static_cast<std::size_t>(d)];
+        const int ndcol = super_[d + 1] - super_[d], pdi = pi_[d], ndrow = pi_[d + 1] - pdi;
+        const int pdi1 = pdi + l.lpos[static_cast<std::size_t>(d)];
+        int pdi2 = pdi1;
+        while (pdi2 < pdi + ndrow && rows_[static_cast<std::size_t>(pdi2)] < k2) ++pdi2;
+        const int ndrow1 = pdi2 - pdi1, ndrow2 = pdi + ndrow - pdi1;
+        const double* Ld = Lx_.data() + px_[d] + (pdi1 - pdi);
+        const double* Dd = D_.data() + super_[d];
+        ws.W.resize(static_cast<std::size_t>(ndrow1) * static_cast<std::size_t>(ndcol));
+        for (int k = 0; k < ndcol; ++k)
+          for (int i = 0; i < ndrow1; ++i)
+            ws.W[static_cast<std::size_t>(k) * static_cast<std::size_t>(ndrow1) + static_cast<std::size_t>(i)] =
+                Ld[static_cast<std::ptrdiff_t>(k) * ndrow + i] * Dd[k];
+        ws.C.resize(static_cast<std::size_t>(ndrow2) * static_cast<std::size_t>(ndrow1));
+        {
+          const Eigen::Map<const Eigen::MatrixXd, 0, Stride> A(Ld, ndrow2, ndcol, Stride(ndrow));
+          const Eigen::Map<const Eigen::MatrixXd> B(ws.W.data(), ndrow1, ndcol);
+          Eigen::Map<Eigen::MatrixXd> Cm(ws.C.data(), ndrow2, ndrow1);
+          Cm.noalias() = A * B.transpose();
+        }
+        for (int j = 0; j < ndrow1; ++j) {
+          double* target = Ls + static_cast<std::ptrdiff_t>(rows_[static_cast<std::size_t>(pdi1 + j)] - k1) * nsrow;
+          const double* cj = ws.C.data() + static_cast<std::ptrdiff_t>(j) * ndrow2;
+          for (int i = j; i < ndrow2; ++i) target[map[static_cast<std::size_t>(rows_[static_cast<std::size_t>(pdi1 + i)])]] -= cj[i];
+        }
+        l.lpos[static_cast<std::size_t>(d)] = pdi2 - pdi;
+        link(d);
+        d = dnext;
       }
-      lpos[static_cast<std::size_t>(d)] = pdi2 - pdi;
-      link(d);
-      d = dnext;
     }
-    if (!factor_diagonal_block(Ls, nscol, nsrow, D_.data() + k1, w)) return false;
+    if (!factor_diagonal_block(Ls, nscol, nsrow, D_.data() + k1, ws.w)) return false;
     if (const int nrest = nsrow - nscol; nrest > 0) {
-      dtrsm_("R", "L", "T", "U", &nrest, &nscol, &kPlus, Ls, &nsrow, Ls + nscol, &nsrow);
+      {
+        const Eigen::Map<const Eigen::MatrixXd, 0, Stride> L11(Ls, nscol, nscol, Stride(nsrow));
+        Eigen::Map<Eigen::MatrixXd, 0, Stride> L21(Ls + nscol, nrest, nscol, Stride(nsrow));
+        L11.triangularView<Eigen::UnitLower>().transpose().solveInPlace<Eigen::OnTheRight>(L21);
+      }
       for (int j = 0; j < nscol; ++j) {
         double* cj = Ls + static_cast<std::ptrdiff_t>(j) * nsrow + nscol;
         const double inv = 1.0 / D_[k1 + j];
         for (int i = 0; i < nrest; ++i) cj[i] *= inv;
       }
     }
-    lpos[static_cast<std::size_t>(s)] = nscol;
+    l.lpos[static_cast<std::size_t>(s)] = nscol;
     link(s);
   }
   return true;
 }
 
-void SupernodalLdlt::solve_in_place(double* x) const {
-  const int nsuper = static_cast<int>(super_.size()) - 1;
-  work_.resize(static_cast<std::size_t>(std::max(max_update_, 1)));
-  double* t = work_.data();
-  for (int s = 0; s < nsuper; ++s) {
-    const int k1 = super_[s], nscol = super_[s + 1] - k1, psi = pi_[s], nsrow = pi_[s + 1] - psi, nrest = nsrow - nscol;
-    const double* Ls = Lx_.data() + px_[s];
-    dtrsv_("L", "N", "U", &nscol, Ls, &nsrow, x + k1, &kOne);
-    if (nrest == 0) continue;
-    dgemv_("N", &nrest, &nscol, &kPlus, Ls + nscol, &nsrow, x + k1, &kOne, &kZero, t, &kOne);
-    for (int i = 0; i < nrest; ++i) x[rows_[static_cast<std::size_t>(psi + nscol + i)]] -= t[i];
+bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& upper) {
+  if (super_.empty()) throw std::logic_error("SupernodalLdlt::factorize without a supernodal analysis");
+  if (upper.rows() != n_ || upper.nonZeros() != static_cast<long>(low_row_.size()))
+    throw std::invalid_argument("SupernodalLdlt: matrix pattern differs from the analysed one");
+  const auto nsuper = super_.size() - 1;
+  const double* av = upper.valuePtr();
+  Lists l;
+  for (auto& h : l.head) h.assign(nsuper, -1);
+  l.next.assign(nsuper, -1);
+  l.lpos.assign(nsuper, 0);
+  Scratch main, second;
+  main.map.assign(static_cast<std::size_t>(n_), 0);
+  if (!split_) {
+    std::vector<int> all(nsuper);
+    std::iota(all.begin(), all.end(), 0);
+    return factor_part(all, 0, av, l, main);
   }
-  for (long i = 0; i < n_; ++i) x[i] /= D_[i];
-  for (int s = nsuper - 1; s >= 0; --s) {
+  // The two subtrees side by side (each reads and writes only its own supernodes, links into its
+  // own lists), the separators after.
+  second.map.assign(static_cast<std::size_t>(n_), 0);
+  auto other = std::async(std::launch::async, [&] { return factor_part(part_[2], 2, av, l, second); });
+  const bool ok1 = factor_part(part_[1], 1, av, l, main);
+  const bool ok2 = other.get();
+  return ok1 && ok2 && factor_part(part_[0], 0, av, l, main);
+}
+
+void SupernodalLdlt::forward(const std::vector<int>& part, double* x, double* t, double* top) const {
+  for (int s : part) {
     const int k1 = super_[s], nscol = super_[s + 1] - k1, psi = pi_[s], nsrow = pi_[s + 1] - psi, nrest = nsrow - nscol;
     const double* Ls = Lx_.data() + px_[s];
+    const Eigen::Map<const Eigen::MatrixXd, 0, Stride> L11(Ls, nscol, nscol, Stride(nsrow));
+    Eigen::Map<Eigen::VectorXd> xs(x + k1, nscol);
+    L11.triangularView<Eigen::UnitLower>().solveInPlace(xs);
+    if (nrest == 0) continue;
+    const Eigen::Map<const Eigen::MatrixXd, 0, Stride> L21(Ls + nscol, nrest, nscol, Stride(nsrow));
+    Eigen::Map<Eigen::VectorXd>(t, nrest).noalias() = L21 * xs;
+    const int* below = rows_.data() + psi + nscol;
+    if (top)  // a subtree's thread: its share for the separators kept apart
+      for (int i = 0; i < nrest; ++i) (top_column_[static_cast<std::size_t>(below[i])] ? top[below[i]] : x[below[i]]) -= t[i];
+    else
+      for (int i = 0; i < nrest; ++i) x[below[i]] -= t[i];
+  }
+}
+
+void SupernodalLdlt::backward(const std::vector<int>& part, double* x, double* t) const {
+  for (auto it = part.rbegin(); it != part.rend(); ++it) {
+    const int s = *it;
+    const int k1 = super_[s], nscol = super_[s + 1] - k1, psi = pi_[s], nsrow = pi_[s + 1] - psi, nrest = nsrow - nscol;
+    const double* Ls = Lx_.data() + px_[s];
+    Eigen::Map<Eigen::VectorXd> xs(x + k1, nscol);
     if (nrest > 0) {
       for (int i = 0; i < nrest; ++i) t[i] = x[rows_[static_cast<std::size_t>(psi + nscol + i)]];
-      dgemv_("T", &nrest, &nscol, &kMinus, Ls + nscol, &nsrow, t, &kOne, &kPlus, x + k1, &kOne);
+      const Eigen::Map<const Eigen::MatrixXd, 0, Stride> L21(Ls + nscol, nrest, nscol, Stride(nsrow));
+      xs.noalias() -= L21.transpose() * Eigen::Map<const Eigen::VectorXd>(t, nrest);
     }
-    dtrsv_("L", "T", "U", &nscol, Ls, &nsrow, x + k1, &kOne);
+    const Eigen::Map<const Eigen::MatrixXd, 0, Stride> L11(Ls, nscol, nscol, Stride(nsrow));
+    L11.triangularView<Eigen::UnitLower>().transpose().solveInPlace(xs);
   }
+}
+
+void SupernodalLdlt::solve_in_place(double* x) const {
+  const auto m = static_cast<std::size_t>(std::max(max_update_, 1));
+  work_.resize(m);
+  if (!split_) {
+    std::vector<int> all(super_.size() - 1);
+    std::iota(all.begin(), all.end(), 0);
+    forward(all, x, work_.data(), nullptr);
+    for (long i = 0; i < n_; ++i) x[i] /= D_[i];
+    backward(all, x, work_.data());
+    return;
+  }
+  work2_.resize(m);
+  // The two subtrees side by side (they touch no column of each other's), the separators after.
+  auto other = std::async(std::launch::async, [&] { forward(part_[2], x, work2_.data(), top_share_[1].data()); });
+  forward(part_[1], x, work_.data(), top_share_[0].data());
+  other.get();
+  for (long j = 0; j < n_; ++j)
+    if (top_column_[static_cast<std::size_t>(j)]) {
+      x[j] += top_share_[0][static_cast<std::size_t>(j)] + top_share_[1][static_cast<std::size_t>(j)];
+      top_share_[0][static_cast<std::size_t>(j)] = top_share_[1][static_cast<std::size_t>(j)] = 0.0;
+    }
+  forward(part_[0], x, work_.data(), nullptr);
+  for (long i = 0; i < n_; ++i) x[i] /= D_[i];
+  backward(part_[0], x, work_.data());
+  other = std::async(std::launch::async, [&] { backward(part_[2], x, work2_.data()); });
+  backward(part_[1], x, work_.data());
+  other.get();
 }
 
 }  // namespace modalbench::rfem::detail

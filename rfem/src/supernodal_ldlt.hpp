@@ -12,9 +12,15 @@
 // inertia of A (Sylvester), which is what the Sturm count reads; a simplicial LDL' (Eigen's) gets
 // the same D at a few times the cost on a plate's grid, where the fill is in dense fronts.
 //
-// available() is false where CHOLMOD's analysis chooses a simplicial factor (few flops per entry
-// of L: a beam): the caller keeps its simplicial LDL' there.
+// analyze() is false where CHOLMOD's analysis chooses a simplicial factor (few flops per entry of
+// L: a beam): the caller keeps its simplicial LDL' there.
+//
+// The factorization and the solve run on two threads where the elimination tree splits into two
+// subtrees of comparable weight (a plate's grid: its first separator): each thread factors and
+// solves its subtrees (in the solve, what they add to the separators above them kept apart until
+// both are done); the separators then alone.
 
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
 #include <vector>
@@ -38,6 +44,8 @@ class SupernodalLdlt {
   /// x := A^{-1} x (in place, length n).
   void solve_in_place(double* x) const;
   long n() const { return n_; }
+  /// Whether solves run on two threads (the tree splits into two comparable subtrees).
+  bool two_threads() const { return split_; }
   /// Entries of L stored (the supernodes' dense blocks, explicit zeros included).
   long stored_entries() const { return static_cast<long>(Lx_.size()); }
 
@@ -48,10 +56,28 @@ class SupernodalLdlt {
   // The lower triangle of A by columns: per column j, the rows i >= j and where A(i, j) sits in
   // the upper CSC values (A(j, i) there).
   std::vector<int> low_start_, low_row_, low_src_;
-  std::vector<double> Lx_;
+  // Eigen's vector kernels peel to the packet alignment: with the factor and the work vectors
+  // aligned to it the order of every sum, and so the last bits, are the same from run to run (on
+  // malloc's 16 bytes the command line and the Python module differed there).
+  using Aligned = std::vector<double, Eigen::aligned_allocator<double>>;
+  Aligned Lx_;
   Eigen::VectorXd D_;
-  mutable std::vector<double> work_;
-  int max_update_ = 0;  // rows x columns of the largest descendant update
+  mutable Aligned work_;
+  int max_update_ = 0;  // rows of the largest supernode
+  // The two-thread solve: the supernodes of each part in elimination order (parts 1 and 2: disjoint
+  // subtrees; part 0: the separators above them), whether a column is in part 0, and each part's
+  // right-hand side share for the separators.
+  std::vector<int> part_[3];
+  std::vector<char> top_column_;
+  mutable Aligned work2_;
+  mutable std::vector<double> top_share_[2];
+  bool split_ = false;
+  void plan_split();
+  struct Lists;
+  struct Scratch;
+  bool factor_part(const std::vector<int>& part, int own, const double* av, Lists& l, Scratch& ws);
+  void forward(const std::vector<int>& part, double* x, double* t, double* top) const;
+  void backward(const std::vector<int>& part, double* x, double* t) const;
 };
 
 }  // namespace modalbench::rfem::detail

@@ -283,6 +283,33 @@ BOOST_AUTO_TEST_CASE(supernodal_ldlt_counts_and_solves_on_a_plate_grid) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(two_thread_supernodal_solves_leave_a_rounding_residual) {
+  // A plate large enough for the solve to split into two subtrees on two threads: at a shift
+  // below the spectrum (positive definite) the residual is at the rounding of A, and equal, to
+  // rounding, as is that of the same matrix's simplicial LDL' (Eigen, AMD: an independent factor).
+  PlateOptions o;
+  o.nx = 100;
+  o.ny = 70;
+  const Support p = Support::named("pinned"), c = Support::named("clamped");
+  const System sys = assemble(build_plate(plate_scene(Theory::Mindlin, p, p, c, p), o));
+  KktLdlt ldlt;
+  ldlt.analyze(SpMat(sys.K + sys.M), sys.G);
+  BOOST_TEST_REQUIRE(ldlt.two_thread_solves());
+  const SpMat A = sys.K + 1e3 * sys.M;
+  BOOST_REQUIRE(ldlt.factorize(A));
+  BOOST_TEST(ldlt.negative_count() == 0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(sys.n(), -1.0, 2.0).array().sin().matrix();
+  const Eigen::VectorXd x = ldlt.solve(b);
+  double norm_a = 0;
+  for (int j = 0; j < A.outerSize(); ++j) norm_a = std::max(norm_a, SpMat(A.col(j)).cwiseAbs().sum());
+  const double eps = std::numeric_limits<double>::epsilon();
+  BOOST_TEST((A * x - b).norm() <= 1e3 * eps * (norm_a * x.norm() + b.norm()));
+  Eigen::SimplicialLDLT<SpMat> reference(A);
+  BOOST_REQUIRE((reference.info() == Eigen::Success));
+  const Eigen::VectorXd xr = reference.solve(b);
+  BOOST_TEST((A * xr - b).norm() <= 1e3 * eps * (norm_a * xr.norm() + b.norm()));
+}
+
 BOOST_AUTO_TEST_CASE(point_loads_and_probes_are_reciprocal) {
   // Maxwell-Betti: w at B due to a unit force at A equals w at A due to a unit force at B, for
   // points inside cells and on cell boundaries.

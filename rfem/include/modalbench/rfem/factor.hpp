@@ -65,6 +65,9 @@ class KktLdlt {
   /// True where the factor is supernodal (plates: CHOLMOD's analysis found dense fronts), false
   /// where it is Eigen's simplicial LDL' (beams).
   bool supernodal() const { return use_super_; }
+  /// True where the supernodal solves run on two threads (the elimination tree splits into two
+  /// subtrees of comparable weight: plates from about 56 x 40 fragments).
+  bool two_thread_solves() const;
 
  private:
   Eigen::VectorXd pivots() const;  ///< D
