@@ -1,9 +1,11 @@
-// Plate of 100 x 60 rigid elements (mesh 99x59 fragments: 6000 RFEs, 18,000 body DOFs), first 8
+// Plate of 100 x 60 rigid elements (mesh 99x59 fragments: 6000 RFEs, 18,000 body DOFs; or the mesh
+// given after the repeats, e.g. `5 168 120`), first 8
 // modes. Target (issue 3): <= 0.5 s and <= 500 MB peak on this 2-core machine.
 //
 // Sample runs:
 //   build-rfem/benchmarks/rfem/bench_rfem_plate            # Table 2 plate, Mindlin and Kirchhoff
 //   build-rfem/benchmarks/rfem/bench_rfem_plate 5          # 5 timed repeats (default 5)
+//   build/benchmarks/rfem/bench_rfem_plate 3 168 120       # 3 repeats on 168 x 120 fragments
 //
 // 1. For each theory and with / without the Sturm count, one child process: a warm-up, then
 //    build + assemble + the 8 lowest modes, timed (median of repeats); phases of the last run.
@@ -26,8 +28,8 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
   const int nx = argc > 3 ? std::atoi(argv[2]) : 99, ny = argc > 3 ? std::atoi(argv[3]) : 59;
   const Scene base = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
-  fmt::print("plate {} x {} x {} m, mesh 99x59 fragments = 100 x 60 RFEs, 8 lowest modes, median of {} after a warm-up\n",
-             base.geometry.length, base.geometry.width, base.geometry.height, repeats);
+  fmt::print("plate {} x {} x {} m, mesh {}x{} fragments = {} x {} RFEs, 8 lowest modes, median of {} after a warm-up\n",
+             base.geometry.length, base.geometry.width, base.geometry.height, nx, ny, nx + 1, ny + 1, repeats);
   for (Theory theory : {Theory::Mindlin, Theory::Kirchhoff})
     for (bool sturm : {true, false})
       rfem_bench::in_child([&] {
