@@ -116,50 +116,53 @@ Discretization graded_step(const Discretization& mesh) {
   return d;
 }
 
-/// The least half-integer factor f >= `factor` with every count times f a multiple of `k` (f = 2
-/// always is one for counts that are multiples of k, k even).
-double half_integer_factor(const Discretization& mesh, double factor, int k) {
+/// The least half-integer factor f >= `factor` with every count times f a multiple of 8 (f = 2
+/// always is one for counts that are).
+double multiple_of_8_factor(const Discretization& mesh, double factor) {
   for (double f = std::max(1.5, std::ceil(2.0 * factor - 1e-9) / 2.0);; f += 0.5) {
     bool ok = true;
     for (int n : mesh.counts) {
       const double m = n * f;
-      ok = ok && m == std::floor(m) && static_cast<long>(m) % k == 0;
+      ok = ok && m == std::floor(m) && static_cast<long>(m) % 8 == 0;
     }
     if (ok) return f;
   }
 }
+
+/// A plate mesh on which the default path refines by graded steps: even counts, and nothing whose
+/// error depends on its place within a cell (probes, point supports, masses).
+bool evenly_converging(const Scene& s, const Discretization& mesh) {
+  return mesh.counts.size() == 2 &&
+         std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n >= 2 && n % 2 == 0; }) &&
+         s.request.probes.empty() && s.point_supports.empty() && s.masses.empty();
+}
 }  // namespace
 
 std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discretization& mesh, double factor) const {
-  const bool even_plate = s.is_plate() && mesh.counts.size() == 2 &&
-                          std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n >= 2 && n % 2 == 0; });
-  // A plate refines by one step of its graded sequence (x 1.5, then x 4/3, ...), whatever factor
-  // is asked, where its errors fall evenly: the refinement's last meshes are then at most 1.5 apart,
-  // and the window the estimate and the extrapolation judge lies in the asymptotic range as early as
-  // it can. One jump by the factor asked left the coarse end of the window behind: the Mindlin
-  // paper plate at 1e-4 went 56 x 40 -> 112 x 80, judged mode 8 on 28 x 20 and 14 x 10 (pre-
-  // asymptotic: estimate 1.6e-4 for a true 1.3e-5) and went on to 168 x 120 (1.6 s in all); graded,
-  // 84 x 60 -> 112 x 80 meets it (0.6 s), and 1e-5 on 168 x 120 (1.9 s, where the jumps took 56 x 40
-  // -> 224 x 160 -> 448 x 320, 13.6 s). Where a probe or a point support or mass sits in the
-  // cells, its error falls unevenly as its place in its cell changes from mesh to mesh, and a
-  // larger step pays (a deflection beside a point support at 1e-3: 4.7 s graded all the way, 2.1 s
-  // so): there only what asks for less than twice the mesh takes a graded step.
-  const bool evenly = s.request.probes.empty() && s.point_supports.empty() && s.masses.empty();
-  if (even_plate && (evenly || factor < 2.0)) {
+  // A plate whose errors fall evenly (no probe, point support or mass sits in its cells, where
+  // the error changes with the place in the cell from mesh to mesh) refines by one step of its
+  // graded sequence (x 1.5, then x 4/3, ...), whatever factor is asked: the refinement's last
+  // meshes are then at most 1.5 apart, and the window the estimate and the extrapolation judge lies
+  // in the asymptotic range as early as it can. One jump by the factor asked left the coarse end of
+  // the window behind: the Mindlin paper plate at 1e-4 went 56 x 40 -> 112 x 80, judged mode 8 on
+  // 28 x 20 and 14 x 10 (pre-asymptotic: estimate 1.6e-4 for a true 1.3e-5) and went on to
+  // 168 x 120 (2.7 s in all); graded, 84 x 60 -> 112 x 80 meets it (0.6 s), and 1e-5 on 168 x 120
+  // (1.5 s, where the jumps took 56 x 40 -> 224 x 160 -> 448 x 320, 37 s). With a point feature,
+  // graded steps took 4.7 s where jumps took 1.2 s (a deflection beside a point support at 1e-3).
+  if (s.is_plate() && evenly_converging(s, mesh)) {
     Discretization d = graded_step(mesh);
     if (std::max(d.counts[0], d.counts[1]) > 2000) return std::nullopt;
     return d;
   }
-  // A larger step: an even plate mesh grows by the least factor of 1.5, 2, 2.5, ... (at least the
-  // one asked) that keeps every count even, and a multiple of 8 where it is (the halvings of the
-  // default mesh): the meshes are then uniform coarsenings of each other.
-  if (even_plate) {
-    const bool eights = std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n % 8 == 0; });
-    factor = half_integer_factor(mesh, factor, eights ? 8 : 2);
-  }
+  // Otherwise a plate mesh of multiples of 8 (default_mesh) grows by the least factor of 1.5, 2,
+  // 2.5, ... (at least the one asked) that keeps every count a multiple of 8: the refined mesh, the
+  // one before it and that one's halving are then uniform coarsenings of each other, which the
+  // extrapolation needs.
+  const bool whole = s.is_plate() && std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n % 8 == 0; });
+  if (whole) factor = multiple_of_8_factor(mesh, factor);
   Discretization d;
   for (int n : mesh.counts) {
-    long m = std::lround(std::ceil(n * factor - 1e-9 * n));
+    long m = std::lround(std::ceil(n * factor));
     m += m % 2;
     if (m > (s.is_beam() ? 2000000L : 2000L)) return std::nullopt;
     d.counts.push_back(static_cast<int>(m));
@@ -168,9 +171,9 @@ std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discr
 }
 
 int RfemSolver::refinement_steps(const Scene& s) const {
-  // Twice the other families': two graded steps make one doubling (the Mindlin paper plate at 1e-5
-  // takes three of them).
-  return s.is_plate() ? 6 : Solver::refinement_steps(s);
+  // Twice the other families' where the steps are graded: two of them make one doubling (the
+  // Mindlin paper plate at 1e-5 takes three).
+  return s.is_plate() && evenly_converging(s, default_mesh(s)) ? 6 : Solver::refinement_steps(s);
 }
 
 }  // namespace modalbench::rfem
