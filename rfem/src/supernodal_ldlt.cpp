@@ -157,7 +157,8 @@ void SupernodalLdlt::plan_split() {
   for (int s = nsuper - 1; s >= 0; --s)
     if (part[static_cast<std::size_t>(s)] < 0) part[static_cast<std::size_t>(s)] = part[static_cast<std::size_t>(parent[static_cast<std::size_t>(s)])];
   // Worth a thread where both shares are a fifth of the factor or more, and the factor is large
-  // enough for the solve to outlast starting one (a plate of 56 x 40 fragments and up).
+  // enough for the solve to outlast starting one (a Mindlin plate of 84 x 60 fragments and up;
+  // 56 x 40 is below).
   split_ = total >= 1e6 && std::min(load[0], load[1]) >= 0.2 * total;
   for (auto& v : part_) v.clear();
   top_column_.assign(static_cast<std::size_t>(n_), 0);

@@ -66,7 +66,7 @@ class KktLdlt {
   /// where it is Eigen's simplicial LDL' (beams).
   bool supernodal() const { return use_super_; }
   /// True where the supernodal solves run on two threads (the elimination tree splits into two
-  /// subtrees of comparable weight: plates from about 56 x 40 fragments).
+  /// subtrees of comparable weight: Mindlin plates from 84 x 60 fragments on).
   bool two_thread_solves() const;
 
  private:
