@@ -7,7 +7,7 @@
 // CHOLMOD's symbolic analysis (its supernodes and their row patterns, the order given and not
 // postordered) supplies the structure; the numeric factorization is left-looking over the
 // supernodes, as CHOLMOD's own LL' is: every update from a descendant is one dense product
-// L_d W' (W = L_d D_d restricted to the target's columns) through the BLAS, the diagonal block an
+// L_d W' (W = L_d D_d restricted to the target's columns) by Eigen's kernels, the diagonal block an
 // unblocked dense LDL' and the rows below it one triangular solve. The inertia of D is then the
 // inertia of A (Sylvester), which is what the Sturm count reads; a simplicial LDL' (Eigen's) gets
 // the same D at a few times the cost on a plate's grid, where the fill is in dense fronts.
