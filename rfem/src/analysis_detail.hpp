@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/system.hpp"
 
 namespace modalbench::rfem::detail {
@@ -57,6 +58,13 @@ struct Flexible {
   Eigen::VectorXd lambda;
   Eigen::MatrixXd Z;
 };
+
+// After the eigensolve of solve_modes (analysis_mode_checks.cpp): near-rigid pairs in place of
+// those the solve left in the rounding of K (which modes, returned; said in `rigid_text`), the
+// family labels, and every pair's residual, backward error and forward bound.
+std::vector<char> take_near_rigid_pairs(const Model& model, const System& sys, long nr, Modes& out, std::string& rigid_text);
+void label_families(const Model& model, const System& sys, long nr, Modes& out);
+void measure_residuals(const System& sys, long nr, const std::vector<char>& near_rigid, Modes& out);
 
 // Dense path of solve_modes (analysis_dense.cpp).
 Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, double sigma, std::string& method);

@@ -162,7 +162,11 @@ void SupernodalLdlt::plan_split() {
   split_ = total >= 1e6 && std::min(load[0], load[1]) >= 0.2 * total;
   for (auto& v : part_) v.clear();
   top_column_.assign(static_cast<std::size_t>(n_), 0);
-  if (!split_) return;
+  if (!split_) {  // one part, every supernode
+    part_[0].resize(static_cast<std::size_t>(nsuper));
+    std::iota(part_[0].begin(), part_[0].end(), 0);
+    return;
+  }
   for (int s = 0; s < nsuper; ++s) {
     part_[static_cast<std::size_t>(part[static_cast<std::size_t>(s)])].push_back(s);
     if (part[static_cast<std::size_t>(s)] == 0)
@@ -272,18 +276,15 @@ bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& upper) {
   l.lpos.assign(nsuper, 0);
   Scratch main, second;
   main.map.assign(static_cast<std::size_t>(n_), 0);
-  if (!split_) {
-    std::vector<int> all(nsuper);
-    std::iota(all.begin(), all.end(), 0);
-    return factor_part(all, 0, av, l, main);
+  if (split_) {
+    // The two subtrees side by side (each reads and writes only its own supernodes, links into its
+    // own lists), the separators after.
+    second.map.assign(static_cast<std::size_t>(n_), 0);
+    auto other = std::async(std::launch::async, [&] { return factor_part(part_[2], 2, av, l, second); });
+    const bool ok1 = factor_part(part_[1], 1, av, l, main);
+    if (!other.get() || !ok1) return false;
   }
-  // The two subtrees side by side (each reads and writes only its own supernodes, links into its
-  // own lists), the separators after.
-  second.map.assign(static_cast<std::size_t>(n_), 0);
-  auto other = std::async(std::launch::async, [&] { return factor_part(part_[2], 2, av, l, second); });
-  const bool ok1 = factor_part(part_[1], 1, av, l, main);
-  const bool ok2 = other.get();
-  return ok1 && ok2 && factor_part(part_[0], 0, av, l, main);
+  return factor_part(part_[0], 0, av, l, main);
 }
 
 void SupernodalLdlt::forward(const std::vector<int>& part, double* x, double* t, double* top) const {
@@ -323,30 +324,27 @@ void SupernodalLdlt::backward(const std::vector<int>& part, double* x, double* t
 void SupernodalLdlt::solve_in_place(double* x) const {
   const auto m = static_cast<std::size_t>(std::max(max_update_, 1));
   work_.resize(m);
-  if (!split_) {
-    std::vector<int> all(super_.size() - 1);
-    std::iota(all.begin(), all.end(), 0);
-    forward(all, x, work_.data(), nullptr);
-    for (long i = 0; i < n_; ++i) x[i] /= D_[i];
-    backward(all, x, work_.data());
-    return;
+  std::future<void> other;
+  if (split_) {
+    // The two subtrees side by side (they touch no column of each other's), the separators after.
+    work2_.resize(m);
+    other = std::async(std::launch::async, [&] { forward(part_[2], x, work2_.data(), top_share_[1].data()); });
+    forward(part_[1], x, work_.data(), top_share_[0].data());
+    other.get();
+    for (long j = 0; j < n_; ++j)
+      if (top_column_[static_cast<std::size_t>(j)]) {
+        x[j] += top_share_[0][static_cast<std::size_t>(j)] + top_share_[1][static_cast<std::size_t>(j)];
+        top_share_[0][static_cast<std::size_t>(j)] = top_share_[1][static_cast<std::size_t>(j)] = 0.0;
+      }
   }
-  work2_.resize(m);
-  // The two subtrees side by side (they touch no column of each other's), the separators after.
-  auto other = std::async(std::launch::async, [&] { forward(part_[2], x, work2_.data(), top_share_[1].data()); });
-  forward(part_[1], x, work_.data(), top_share_[0].data());
-  other.get();
-  for (long j = 0; j < n_; ++j)
-    if (top_column_[static_cast<std::size_t>(j)]) {
-      x[j] += top_share_[0][static_cast<std::size_t>(j)] + top_share_[1][static_cast<std::size_t>(j)];
-      top_share_[0][static_cast<std::size_t>(j)] = top_share_[1][static_cast<std::size_t>(j)] = 0.0;
-    }
   forward(part_[0], x, work_.data(), nullptr);
   for (long i = 0; i < n_; ++i) x[i] /= D_[i];
   backward(part_[0], x, work_.data());
-  other = std::async(std::launch::async, [&] { backward(part_[2], x, work2_.data()); });
-  backward(part_[1], x, work_.data());
-  other.get();
+  if (split_) {
+    other = std::async(std::launch::async, [&] { backward(part_[2], x, work2_.data()); });
+    backward(part_[1], x, work_.data());
+    other.get();
+  }
 }
 
 }  // namespace modalbench::rfem::detail

@@ -64,9 +64,9 @@ class SupernodalLdlt {
   Eigen::VectorXd D_;
   mutable Aligned work_;
   int max_update_ = 0;  // rows of the largest supernode
-  // The two-thread solve: the supernodes of each part in elimination order (parts 1 and 2: disjoint
-  // subtrees; part 0: the separators above them), whether a column is in part 0, and each part's
-  // right-hand side share for the separators.
+  // The supernodes of each part in elimination order (parts 1 and 2: disjoint subtrees, each on a
+  // thread of its own; part 0: the separators above them, or every supernode where the tree does
+  // not split), whether a column is in part 0, and each subtree's share for the separators.
   std::vector<int> part_[3];
   std::vector<char> top_column_;
   mutable Aligned work2_;
