@@ -9,7 +9,8 @@ BUDGET ?= 20
 PACKAGES := g++ cmake make pkg-config libeigen3-dev libgsl-dev libboost-test-dev \
             libspectra-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
             libsuitesparse-dev libopenblas0-serial gnuplot-nox calculix-ccx \
-            pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-distributed
+            pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-distributed \
+            universal-ctags
 
 .PHONY: all deps configure build report test bench sanitize fuzz clean
 

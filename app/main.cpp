@@ -284,71 +284,120 @@ int run_study(const std::string& spec, const std::string& out, const std::string
 #endif
 }
 
-}  // namespace
+/// A positive number of `unit` up to `hi`, as an option's check.
+CLI::Validator positive(double hi, const char* unit) {
+  return CLI::Validator(
+      [hi, unit](const std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0) || v > hi)
+          return fmt::format("must be a number of {} in (0, {:g}] (got '{}')", unit, hi, text);
+        return "";
+      },
+      unit, unit);
+}
 
-int main(int argc, char** argv) {
-  modalbench::reuse_freed_memory();
-  CLI::App app{"modalbench: which beam or plate model to trust, how accurate, at what cost"};
-  app.require_subcommand(1);
-  auto* list = app.add_subcommand("list", "list the built-in scenes and the back-ends");
-
-  auto* solve = app.add_subcommand("solve", "solve one scene with one back-end");
-  std::string scene_path, backend = "exact", mesh_spec, mass = "consistent";
+struct SolveArgs {
+  std::string scene_path, backend = "exact", mesh_spec, mass = "consistent", vtk_dir;
   bool json = false, verbose = false;
-  solve->add_option("scene", scene_path, "scene file (TOML), or a built-in scene's name (modalbench list)")->required();
-  auto* backend_opt = solve->add_option("--backend,-b", backend, "back-end name (see `modalbench list`; default: exact)");
-  solve->add_option("--mesh,-m", mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
-  solve->add_option("--mass", mass, "consistent or lumped (back-ends that offer both)");
   std::vector<std::string> backend_options;
-  solve->add_option("--option,-o", backend_options,
-                    "back-end option KEY=VALUE (repeatable; over the scene's [backend.NAME]; see `modalbench options`)");
-  solve->add_flag("--json", json, "print one JSON object (schema in README.md)");
-  solve->add_flag("--verbose,-v", verbose, "also print the method used and the options, in words");
   double max_memory_gb = 0, max_time_s = 600;
-  auto positive = [](double hi, const char* unit) {
-    return CLI::Validator(
-        [hi, unit](const std::string& text) -> std::string {
-          char* end = nullptr;
-          const double v = std::strtod(text.c_str(), &end);
-          if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0) || v > hi)
-            return fmt::format("must be a number of {} in (0, {:g}] (got '{}')", unit, hi, text);
-          return "";
-        },
-        unit, unit);
-  };
-  solve->add_option("--max-memory", max_memory_gb,
+  CLI::Option* backend_given = nullptr;
+};
+
+CLI::App* add_solve(CLI::App& app, SolveArgs& a) {
+  auto* solve = app.add_subcommand("solve", "solve one scene with one back-end");
+  solve->add_option("scene", a.scene_path, "scene file (TOML), or a built-in scene's name (modalbench list)")->required();
+  a.backend_given = solve->add_option("--backend,-b", a.backend, "back-end name (see `modalbench list`; default: exact)");
+  solve->add_option("--mesh,-m", a.mesh_spec, "discretization, e.g. 64 or 100x60 (default: the back-end's)");
+  solve->add_option("--mass", a.mass, "consistent or lumped (back-ends that offer both)");
+  solve->add_option("--option,-o", a.backend_options,
+                    "back-end option KEY=VALUE (repeatable; over the scene's [backend.NAME]; see `modalbench options`)");
+  solve->add_flag("--json", a.json, "print one JSON object (schema in README.md)");
+  solve->add_flag("--verbose,-v", a.verbose, "also print the method used and the options, in words");
+  solve->add_option("--max-memory", a.max_memory_gb,
                     "refuse a request estimated to need more peak memory, GB (default: 80 % of what this process may use)")
       ->check(positive(1e6, "GB"));
-  solve->add_option("--max-time", max_time_s, "refuse a request estimated to run longer, seconds (default 600)")
+  solve->add_option("--max-time", a.max_time_s, "refuse a request estimated to run longer, seconds (default 600)")
       ->check(positive(1e7, "seconds"));
-  std::string vtk_dir;
-  solve->add_option("--vtk", vtk_dir, "write the mode shapes and static deflections as VTK (.vtu) files into DIR");
+  solve->add_option("--vtk", a.vtk_dir, "write the mode shapes and static deflections as VTK (.vtu) files into DIR");
+  return solve;
+}
 
+/// The run-time options of `modalbench solve`: mass model, limits, the default path without
+/// --mesh, and the back-end options (InputError for one not KEY=VALUE).
+mb::Options solve_options(const SolveArgs& a) {
+  mb::Options opt;
+  opt.mass = mb::parse_mass_model(a.mass, "command line", "--mass");
+  opt.max_memory_bytes = a.max_memory_gb * 1e9;
+  opt.max_time_s = a.max_time_s;
+  opt.refine_to_tolerance = a.mesh_spec.empty();
+  for (const auto& kv : a.backend_options) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw mb::InputError("command line", "--option", "expected KEY=VALUE (got '" + kv + "')");
+    opt.backend.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+  }
+  return opt;
+}
+
+/// `modalbench solve`: exit 0 on success, 3 for numbers that failed a check or a tolerance, 2 for
+/// what was not solved (invalid input, unsupported, over the limits).
+int run_solve(const mb::Registry& reg, const SolveArgs& a) {
+  const mb::Scene scene = mb::load_scene(resolve_scene(a.scene_path));
+  reg.check_backend_tables(scene);
+  const mb::Solver* found = nullptr;
+  try {
+    found = &reg.get(a.backend);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "modalbench: --backend: " << e.what() << "\n";
+    return 2;
+  }
+  const mb::Solver& solver = *found;
+  const mb::Discretization mesh =
+      a.mesh_spec.empty() ? solver.meshes(scene, mb::Options{}).default_mesh : mb::Discretization::parse(a.mesh_spec);
+  const mb::Result r = solve_within(solver, scene, mesh, solve_options(a), a.json);
+  if (!a.vtk_dir.empty()) {
+    for (const auto& f : mb::write_vtk(scene, a.backend, r, a.vtk_dir)) (a.json ? std::cerr : std::cout) << "wrote " << f << "\n";
+  }
+  if (a.json) std::cout << mb::to_json(scene, a.backend, mesh, r).dump(2) << "\n";
+  else
+    print_text(scene, a.backend_given->count() > 0 ? a.backend : a.backend + " (default)", mesh, !a.mesh_spec.empty(), r,
+               a.verbose);
+  if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported ||
+      r.summary.status == mb::Status::ResourceLimit) {
+    if (a.json) std::cerr << "modalbench: " << r.summary.message << "\n";
+    return 2;
+  }
+  return r.ok() ? 0 : 3;
+}
+
+CLI::App* add_rom(CLI::App& app, RomArgs& a, std::string& scene) {
   auto* rom = app.add_subcommand("rom", "export a reduced-order state-space model (A, B, C, D) as JSON");
-  RomArgs rom_args;
-  std::string rom_scene;
-  rom->add_option("scene", rom_scene, "scene file (TOML), or a built-in scene's name")->required();
-  rom->add_option("--backend,-b", rom_args.backend, "back-end name (default: exact)");
-  rom->add_option("--mesh,-m", rom_args.mesh, "discretization (default: the back-end's, refined to the tolerance)");
-  rom->add_option("--inputs", rom_args.inputs, "a unit force Fz at each: x (beam) or x,y (plate), m")->required();
-  rom->add_option("--outputs", rom_args.outputs, "w, its velocity and acceleration at each: x or x,y, m")->required();
-  rom->add_option("--modes", rom_args.modes, "modes retained (default 12)")->check(CLI::Range(1, 100000));
-  rom->add_option("--zeta", rom_args.zeta, "modal damping ratio in A (default 0)")->check(CLI::Range(0.0, 100.0));
-  rom->add_flag("--no-static-correction", rom_args.no_static_correction, "D without the truncated modes' static part");
-  rom->add_option("--out,-o", rom_args.out, "write the JSON here (default: stdout)");
+  rom->add_option("scene", scene, "scene file (TOML), or a built-in scene's name")->required();
+  rom->add_option("--backend,-b", a.backend, "back-end name (default: exact)");
+  rom->add_option("--mesh,-m", a.mesh, "discretization (default: the back-end's, refined to the tolerance)");
+  rom->add_option("--inputs", a.inputs, "a unit force Fz at each: x (beam) or x,y (plate), m")->required();
+  rom->add_option("--outputs", a.outputs, "w, its velocity and acceleration at each: x or x,y, m")->required();
+  rom->add_option("--modes", a.modes, "modes retained (default 12)")->check(CLI::Range(1, 100000));
+  rom->add_option("--zeta", a.zeta, "modal damping ratio in A (default 0)")->check(CLI::Range(0.0, 100.0));
+  rom->add_flag("--no-static-correction", a.no_static_correction, "D without the truncated modes' static part");
+  rom->add_option("--out,-o", a.out, "write the JSON here (default: stdout)");
+  return rom;
+}
 
-  auto* opts = app.add_subcommand("options", "list a back-end's options with their defaults");
-  std::string opts_backend;
-  opts->add_option("backend", opts_backend, "back-end name (default: all)");
-
-  auto* cmp = app.add_subcommand("compare", "run every back-end on scenes and write a report");
-  std::vector<std::string> cmp_scenes;
-  std::string out_dir = "report";
+struct CompareArgs {
+  std::vector<std::string> scenes;
+  std::string out_dir = "report", reference;
   double budget_s = 30.0;
   bool quick = false;
-  cmp->add_option("scenes", cmp_scenes, "scene files (default: every built-in scene)");
-  cmp->add_option("--out,-o", out_dir, "output directory");
-  cmp->add_option("--budget", budget_s, "seconds per scene and back-end for its mesh ladder (default 30)")
+};
+
+CLI::App* add_compare(CLI::App& app, CompareArgs& a) {
+  auto* cmp = app.add_subcommand("compare", "run every back-end on scenes and write a report");
+  cmp->add_option("scenes", a.scenes, "scene files (default: every built-in scene)");
+  cmp->add_option("--out,-o", a.out_dir, "output directory");
+  cmp->add_option("--budget", a.budget_s, "seconds per scene and back-end for its mesh ladder (default 30)")
       ->check(CLI::Validator(
           [](const std::string& text) -> std::string {
             char* end = nullptr;
@@ -358,24 +407,113 @@ int main(int argc, char** argv) {
             return "";
           },
           "SECONDS", "budget"));
-  cmp->add_flag("--quick", quick, "one timing repeat and at most three meshes per back-end");
-  std::string reference;
-  cmp->add_option("--reference", reference, "add an external 3D reference: calculix (needs ccx)")
+  cmp->add_flag("--quick", a.quick, "one timing repeat and at most three meshes per back-end");
+  cmp->add_option("--reference", a.reference, "add an external 3D reference: calculix (needs ccx)")
       ->check(CLI::IsMember({"calculix"}));
+  return cmp;
+}
 
+/// CalculiX as the comparison's 3D reference where `ccx` is found (said in the report's preface
+/// either way).
+void add_calculix(const CompareArgs& a, mb::CompareOptions& opt, mb::ReportOptions& ropt) {
+  const std::string version = mb::calculix_version("ccx");
+  if (version.empty()) {
+    ropt.preface.push_back("3D reference: CalculiX was requested but `ccx` was not found, so it was skipped "
+                           "(Debian: apt-get install calculix-ccx).");
+    return;
+  }
+  ropt.preface.push_back("3D reference: " + version + ", 20-node bricks with reduced integration (C3D20R); "
+                         "run once per mesh (no repeats), its modes labelled from their shapes.");
+  const std::string work = (std::filesystem::path(a.out_dir) / "calculix").string();
+  const double budget_s = a.budget_s;
+  opt.extra_references.push_back([work, budget_s](const mb::Scene& sc, std::ostream* progress) {
+    return mb::calculix_runs(sc, "ccx", work, budget_s, progress);
+  });
+}
+
+int run_compare(const mb::Registry& reg, const CompareArgs& a) {
+  std::vector<mb::Scene> scenes;
+  if (a.scenes.empty())
+    for (const auto& f : mb::scene_files(scenes_dir())) scenes.push_back(mb::load_scene(f));
+  else
+    for (const auto& f : a.scenes) scenes.push_back(mb::load_scene(resolve_scene(f)));
+  for (const auto& sc : scenes) reg.check_backend_tables(sc);
+  mb::CompareOptions opt;
+  opt.budget_s = a.budget_s;
+  opt.quick = a.quick;
+  opt.progress = &std::cerr;
+  mb::ReportOptions ropt;
+  if (a.reference == "calculix") add_calculix(a, opt, ropt);
+  const auto comparisons = mb::run_comparison(scenes, reg, opt);
+  const std::string index = mb::write_report(comparisons, a.out_dir, ropt);
+  std::cout << "report written to " << std::filesystem::absolute(index).string()
+            << " (and report.md, runs.csv, frequencies.csv, results.json, plots/)\n";
+  return 0;
+}
+
+int run_stability_sweep(const mb::Registry& reg, const std::string& dir, bool quick) {
+  const auto rows = mb::run_stability(mb::stability_cases(quick), reg, &std::cerr);
+  const int bad = mb::write_stability_report(rows, dir);
+  std::cout << "stability report written to " << std::filesystem::absolute(dir).string()
+            << "/stability.html (and stability.md, stability.csv)\n";
+  if (bad > 0) {
+    std::cerr << "modalbench: " << bad
+              << " run(s) claimed success with non-finite, missing or unordered numbers, or beyond their own error "
+                 "estimate of the exact values\n";
+    return 3;
+  }
+  return 0;
+}
+
+struct StudyArgs {
+  std::string spec, out, scheduler;
+  int workers = 0;
+};
+
+CLI::App* add_study(CLI::App& app, StudyArgs& a) {
+  auto* study = app.add_subcommand("study", "run a parameter study (Python driver; see README.md)");
+  study->add_option("spec", a.spec, "study spec (TOML)")->required();
+  study->add_option("--out,-o", a.out, "output folder")->required();
+  study->add_option("--scheduler", a.scheduler, "Dask scheduler address (tcp://HOST:PORT); default: local processes");
+  study->add_option("--workers", a.workers, "local processes (default: one per core)")->check(CLI::Range(1, 1024));
+  return study;
+}
+
+/// The one JSON document `solve --json` prints for invalid input (its file, key and reason).
+void print_invalid_input_json(const mb::InputError& e) {
+  std::cout << nlohmann::json{{"status", "invalid-input"},
+                              {"message", e.what()},
+                              {"file", e.source()},
+                              {"key", e.key()},
+                              {"reason", e.reason()}}
+                   .dump(2)
+            << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  modalbench::reuse_freed_memory();
+  CLI::App app{"modalbench: which beam or plate model to trust, how accurate, at what cost"};
+  app.require_subcommand(1);
+  auto* list = app.add_subcommand("list", "list the built-in scenes and the back-ends");
+  SolveArgs solve_args;
+  auto* solve = add_solve(app, solve_args);
+  RomArgs rom_args;
+  std::string rom_scene;
+  auto* rom = add_rom(app, rom_args, rom_scene);
+  auto* opts = app.add_subcommand("options", "list a back-end's options with their defaults");
+  std::string opts_backend;
+  opts->add_option("backend", opts_backend, "back-end name (default: all)");
+  CompareArgs cmp_args;
+  auto* cmp = add_compare(app, cmp_args);
   auto* stab = app.add_subcommand("stability", "sweep slenderness, spring stiffness, mesh size and high modes");
   std::string stab_dir = "report/stability";
   bool stab_quick = false;
   stab->add_option("--out,-o", stab_dir, "output directory");
   stab->add_flag("--quick", stab_quick, "a few cases per group");
-
-  auto* study = app.add_subcommand("study", "run a parameter study (Python driver; see README.md)");
-  std::string study_spec, study_out, study_scheduler;
-  int study_workers = 0;
-  study->add_option("spec", study_spec, "study spec (TOML)")->required();
-  study->add_option("--out,-o", study_out, "output folder")->required();
-  study->add_option("--scheduler", study_scheduler, "Dask scheduler address (tcp://HOST:PORT); default: local processes");
-  study->add_option("--workers", study_workers, "local processes (default: one per core)")->check(CLI::Range(1, 1024));
+  StudyArgs study_args;
+  auto* study = add_study(app, study_args);
 
   try {
     app.parse(argc, argv);
@@ -387,106 +525,19 @@ int main(int argc, char** argv) {
   try {
     const mb::Registry reg = mb::make_default_registry();
     if (*list) return run_list(reg);
-    if (*study) return run_study(study_spec, study_out, study_scheduler, study_workers);
+    if (*study) return run_study(study_args.spec, study_args.out, study_args.scheduler, study_args.workers);
     if (*opts) return run_options(reg, opts_backend);
     if (*rom) {
       const mb::Scene scene = mb::load_scene(resolve_scene(rom_scene));
       reg.check_backend_tables(scene);
       return run_rom(reg, scene, rom_args);
     }
-    if (*solve) {
-      const mb::Scene scene = mb::load_scene(resolve_scene(scene_path));
-      reg.check_backend_tables(scene);
-      const mb::Solver* found = nullptr;
-      try {
-        found = &reg.get(backend);
-      } catch (const std::invalid_argument& e) {
-        std::cerr << "modalbench: --backend: " << e.what() << "\n";
-        return 2;
-      }
-      const mb::Solver& solver = *found;
-      const mb::Discretization mesh =
-          mesh_spec.empty() ? solver.default_mesh(scene) : mb::Discretization::parse(mesh_spec);
-      mb::Options opt;
-      opt.mass = mb::parse_mass_model(mass, "command line", "--mass");
-      opt.max_memory_bytes = max_memory_gb * 1e9;
-      opt.max_time_s = max_time_s;
-      opt.refine_to_tolerance = mesh_spec.empty();
-      for (const auto& kv : backend_options) {
-        const auto eq = kv.find('=');
-        if (eq == std::string::npos || eq == 0)
-          throw mb::InputError("command line", "--option", "expected KEY=VALUE (got '" + kv + "')");
-        opt.backend.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
-      }
-      const mb::Result r = solve_within(solver, scene, mesh, opt, json);
-      if (!vtk_dir.empty()) {
-        for (const auto& f : mb::write_vtk(scene, backend, r, vtk_dir))
-          (json ? std::cerr : std::cout) << "wrote " << f << "\n";
-      }
-      if (json) std::cout << mb::to_json(scene, backend, mesh, r).dump(2) << "\n";
-      else print_text(scene, backend_opt->count() > 0 ? backend : backend + " (default)", mesh, !mesh_spec.empty(), r, verbose);
-      if (r.summary.status == mb::Status::InvalidInput || r.summary.status == mb::Status::Unsupported ||
-          r.summary.status == mb::Status::ResourceLimit) {
-        if (json) std::cerr << "modalbench: " << r.summary.message << "\n";
-        return 2;
-      }
-      return r.ok() ? 0 : 3;
-    }
-    if (*stab) {
-      const auto rows = mb::run_stability(mb::stability_cases(stab_quick), reg, &std::cerr);
-      const int bad = mb::write_stability_report(rows, stab_dir);
-      std::cout << "stability report written to " << std::filesystem::absolute(stab_dir).string()
-                << "/stability.html (and stability.md, stability.csv)\n";
-      if (bad > 0) {
-        std::cerr << "modalbench: " << bad
-                  << " run(s) claimed success with non-finite, missing or unordered numbers, or beyond their own error "
-                     "estimate of the exact values\n";
-        return 3;
-      }
-      return 0;
-    }
-    if (*cmp) {
-      std::vector<mb::Scene> scenes;
-      if (cmp_scenes.empty())
-        for (const auto& f : mb::scene_files(scenes_dir())) scenes.push_back(mb::load_scene(f));
-      else
-        for (const auto& f : cmp_scenes) scenes.push_back(mb::load_scene(resolve_scene(f)));
-      for (const auto& sc : scenes) reg.check_backend_tables(sc);
-      mb::CompareOptions opt;
-      opt.budget_s = budget_s;
-      opt.quick = quick;
-      opt.progress = &std::cerr;
-      mb::ReportOptions ropt;
-      if (reference == "calculix") {
-        const std::string version = mb::calculix_version("ccx");
-        if (version.empty()) {
-          ropt.preface.push_back("3D reference: CalculiX was requested but `ccx` was not found, so it was skipped "
-                                 "(Debian: apt-get install calculix-ccx).");
-        } else {
-          ropt.preface.push_back("3D reference: " + version + ", 20-node bricks with reduced integration (C3D20R); "
-                                 "run once per mesh (no repeats), its modes labelled from their shapes.");
-          const std::string work = (std::filesystem::path(out_dir) / "calculix").string();
-          opt.extra_references.push_back([work, budget_s](const mb::Scene& sc, std::ostream* progress) {
-            return mb::calculix_runs(sc, "ccx", work, budget_s, progress);
-          });
-        }
-      }
-      const auto comparisons = mb::run_comparison(scenes, reg, opt);
-      const std::string index = mb::write_report(comparisons, out_dir, ropt);
-      std::cout << "report written to " << std::filesystem::absolute(index).string()
-                << " (and report.md, runs.csv, frequencies.csv, results.json, plots/)\n";
-      return 0;
-    }
+    if (*solve) return run_solve(reg, solve_args);
+    if (*stab) return run_stability_sweep(reg, stab_dir, stab_quick);
+    if (*cmp) return run_compare(reg, cmp_args);
   } catch (const mb::InputError& e) {
     std::cerr << "modalbench: " << e.what() << "\n";
-    if (*solve && json)  // under --json the answer is always one JSON document
-      std::cout << nlohmann::json{{"status", "invalid-input"},
-                                  {"message", e.what()},
-                                  {"file", e.source()},
-                                  {"key", e.key()},
-                                  {"reason", e.reason()}}
-                       .dump(2)
-                << "\n";
+    if (*solve && solve_args.json) print_invalid_input_json(e);  // under --json the answer is always one JSON document
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "modalbench: " << e.what() << "\n";

@@ -1,4 +1,4 @@
-// `modalbench rom`: the reduced-order state-space model of a scene (harness/rom.hpp) as JSON.
+// `modalbench rom`: the reduced-order state-space model of a scene (modalbench/rom.hpp) as JSON.
 #include "rom_command.hpp"
 
 #include <fmt/format.h>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "modalbench/harness/rom.hpp"
+#include "modalbench/rom.hpp"
 
 namespace mb = modalbench;
 

@@ -1,10 +1,12 @@
 # `cmake --install`: headers, the libraries, the `modalbench` executable and a package config, so
 # that another project's find_package(modalbench CONFIG REQUIRED) gives modalbench::core,
-# modalbench::exact, modalbench::rfem, ... (the static libraries with everything they link).
+# modalbench::numerics, modalbench::exact, modalbench::rfem, modalbench::rom, ... (the static libraries
+# with everything they link).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(modalbench_install_targets modalbench_core modalbench_exact modalbench_solvers modalbench_harness modalbench_warnings)
+set(modalbench_install_targets modalbench_numerics modalbench_core modalbench_exact modalbench_solvers modalbench_rom
+    modalbench_harness modalbench_warnings)
 foreach(backend IN LISTS MODALBENCH_BACKENDS)
   if(TARGET modalbench_${backend})
     list(APPEND modalbench_install_targets modalbench_${backend})
@@ -23,7 +25,7 @@ install(TARGETS ${modalbench_install_targets} EXPORT modalbenchTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS modalbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(dir core exact solvers harness ${MODALBENCH_BACKENDS})
+foreach(dir numerics core exact solvers rom harness ${MODALBENCH_BACKENDS})
   if(EXISTS ${PROJECT_SOURCE_DIR}/${dir}/include)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   endif()

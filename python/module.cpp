@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "modalbench/harness/rom.hpp"
+#include "modalbench/rom.hpp"
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
 #include "modalbench/scene.hpp"
@@ -84,7 +84,7 @@ PYBIND11_MODULE(_modalbench, m) {
   });
   m.def("_backends", [] { return registry().names(); });
   m.def("_default_mesh", [](const mb::Scene& s, const std::string& backend) {
-    return translating([&] { return registry().get(backend).default_mesh(s).spec(); });
+    return translating([&] { return registry().get(backend).meshes(s, mb::Options{}).default_mesh.spec(); });
   });
   // The JSON document `modalbench solve --json` prints, as text.
   m.def("_solve", [](const mb::Scene& scene, const std::string& backend, const std::string& mesh_spec,
@@ -93,7 +93,7 @@ PYBIND11_MODULE(_modalbench, m) {
       const mb::Solver* solver = &solver_named(backend, "solve()");
       mb::Discretization mesh;
       try {
-        mesh = mesh_spec.empty() ? solver->default_mesh(scene) : mb::Discretization::parse(mesh_spec);
+        mesh = mesh_spec.empty() ? solver->meshes(scene, mb::Options{}).default_mesh : mb::Discretization::parse(mesh_spec);
       } catch (const mb::InputError& e) {  // parse speaks of --mesh: here it is the argument `mesh`
         throw mb::InputError("solve()", "mesh", e.reason());
       }

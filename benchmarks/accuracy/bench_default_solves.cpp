@@ -37,9 +37,8 @@ int main(int argc, char** argv) {
     for (const std::string& name : reg.names()) {
       const Solver& b = reg.get(name);
       Options o;
-      o.refine_to_tolerance = true;
       const auto t0 = std::chrono::steady_clock::now();
-      const Result r = b.solve(s, b.default_mesh(s), o);
+      const Result r = b.solve_default(s, o);
       const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const double first = r.summary.diagnostic("estimated_time_s"), plan = r.summary.diagnostic("estimated_time_planned_s");
       const double ratio = plan / t;

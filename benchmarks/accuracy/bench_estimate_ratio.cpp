@@ -82,7 +82,6 @@ int main(int argc, char** argv) {
     s.request.transient.reset();
     s.request.shapes.reset();
     Options o;
-    o.refine_to_tolerance = true;
     // The reference at the tightest tolerance its series meet (a Navier statics series at the
     // scene's own tolerance leaves errors of its order in the reference itself).
     Result ref;
@@ -97,7 +96,7 @@ int main(int argc, char** argv) {
       if (name == "exact") continue;
       const Solver& b = reg.get(name);
       if (!b.supports(s).any()) continue;
-      const Result r = b.solve(s, b.default_mesh(s), o);
+      const Result r = b.solve_default(s, o);
       if (!r.summary.converges_to_scene_theory || r.summary.mesh == "-") continue;
       const ErrorEstimate& e = r.summary.error_estimate;
       // The estimate of the values reported: the extrapolation's where the result answers with it.

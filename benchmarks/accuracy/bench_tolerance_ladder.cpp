@@ -120,10 +120,9 @@ int main(int argc, char** argv) {
         const Solver& b = reg.get(name);
         if (!b.supports(s).modes) continue;
         Options o;
-        o.refine_to_tolerance = true;
         o.max_time_s = max_time;
         const auto t0 = std::chrono::steady_clock::now();
-        const Result r = b.solve(s, b.default_mesh(s), o);
+        const Result r = b.solve_default(s, o);
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const bool x = r.extrapolated.frequencies_reported;
         const double est = r.frequency_estimate();

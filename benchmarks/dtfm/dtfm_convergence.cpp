@@ -1,5 +1,5 @@
 // Convergence of the dtfm prism model: beam sections 1x1 ... 8x8 against the 3D values
-// (ERRATA 8) and plates 4 ... 40 strips against the exact plate, for each layer model.
+// (docs/sources.md, P8) and plates 4 ... 40 strips against the exact plate, for each layer model.
 #include <fmt/format.h>
 
 #include <string>

@@ -31,7 +31,8 @@ int main() {
     const auto t0 = std::chrono::steady_clock::now();
     const Result r = reg.get("exact").solve(s, Discretization{}, o);
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const Result d = reg.get("dtfm").solve(s, reg.get("dtfm").default_mesh(s), o);
+    const Solver& dtfm = reg.get("dtfm");
+    const Result d = dtfm.solve(s, dtfm.meshes(s, o).default_mesh, o);
     const double hi = r.frequencies_rad_s.empty() ? NAN : r.frequencies_rad_s.back();
     const double vs = d.frequencies_rad_s.size() == r.frequencies_rad_s.size() ? std::abs(d.frequencies_rad_s.back() / hi - 1)
                                                                                 : NAN;

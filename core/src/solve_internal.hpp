@@ -18,6 +18,13 @@ namespace modalbench::detail {
 /// value out of its spec.
 ResolvedOptions resolve_options(const Solver& solver, const Scene& scene, const Options& options);
 
+/// The back-end's model of `scene` on `mesh` and its kernels for what the scene asks, in order
+/// (kernels.hpp), into `r`: each timed into its phase, with its own status (Summary::steps). With
+/// `statics_refused`, statics the back-end refuses as invalid input (a mechanism) are dropped
+/// from the result as if no probe had been asked, and the reason is put there.
+void run_kernels(const Solver& solver, const Scene& scene, const Discretization& mesh, const Options& options,
+                 Result& r, std::string* statics_refused);
+
 /// Maps the first pages of this thread's stack now (resources.cpp says why).
 void map_stack_pages();
 /// Peak resident memory of this process so far (VmHWM), bytes; NaN where unknown.

@@ -105,14 +105,15 @@ void SolvePipeline::plan_estimate_meshes() {
   const auto& rq = scene_.request;
   wants_estimate_ = opt_.estimate_error && (rq.modes > 0 || !rq.probes.empty()) && !mesh_.counts.empty();
   if (!wants_estimate_) return;
-  coarse_ = solver_.coarser_mesh(scene_, mesh_, opt_);
+  family_ = solver_.meshes(scene_, opt_);
+  coarse_ = family_.coarser_than(mesh_);
   if (!coarse_)
-    if (const std::optional<Discretization> f = solver_.finer_mesh(scene_, mesh_, 2.0)) {
-      coarse_ = CoarserMesh{*f, static_cast<double>(f->counts[0]) / mesh_.counts[0], solver_.mesh_order(scene_, opt_)};
+    if (const std::optional<Discretization> f = family_.finer_than(mesh_, 2.0)) {
+      coarse_ = CoarserMesh{*f, static_cast<double>(f->counts[0]) / mesh_.counts[0], family_.order};
       check_is_finer_ = true;
     }
-  if (coarse_ && !check_is_finer_) coarser2_ = solver_.coarser_mesh(scene_, coarse_->mesh, opt_);
-  if (coarser2_ && std::isfinite(coarse_->next_order)) coarser3_ = solver_.coarser_mesh(scene_, coarser2_->mesh, opt_);
+  if (coarse_ && !check_is_finer_) coarser2_ = family_.coarser_than(coarse_->mesh);
+  if (coarser2_ && std::isfinite(coarse_->next_order)) coarser3_ = family_.coarser_than(coarser2_->mesh);
 }
 
 /// The request's estimated peak memory and run time (the estimate's coarser meshes included);
@@ -174,37 +175,18 @@ Result SolvePipeline::solve_light(const Scene& sc, const Discretization& m) cons
 
 /// The back-end's solve of `sc` into `x`. A time history needs only the modes: where the statics
 /// are refused (a free structure is a mechanism), this and every later solve go without the probes
-/// (statics_refused_ says why); anything else fails again without them.
+/// (statics_refused_ says why).
 void SolvePipeline::solve_into(const Scene& sc, const Discretization& m, Result& x) const {
-  const bool drop = scene_.request.transient && !sc.request.probes.empty();
-  if (drop && !statics_refused_.empty()) {
+  const bool optional_statics = scene_.request.transient && !sc.request.probes.empty();
+  if (optional_statics && !statics_refused_.empty()) {
     Scene modes_only = sc;
     modes_only.request.probes.clear();
-    solver_.do_solve(modes_only, m, opt_, x);
+    run_kernels(solver_, modes_only, m, opt_, x, nullptr);
     return;
   }
-  const Result before = x;
   std::string refused;
-  std::exception_ptr thrown;
-  try {
-    solver_.do_solve(sc, m, opt_, x);
-    if (drop && x.summary.status == Status::InvalidInput) refused = x.summary.message;
-  } catch (const InputError& e) {
-    if (!drop) throw;
-    refused = e.what();
-    thrown = std::current_exception();
-  }
-  if (refused.empty()) return;
-  Result retry = before;
-  Scene modes_only = sc;
-  modes_only.request.probes.clear();
-  solver_.do_solve(modes_only, m, opt_, retry);
-  if (retry.summary.status == Status::InvalidInput) {  // not the statics: the first answer stands
-    if (thrown) std::rethrow_exception(thrown);
-    return;
-  }
-  x = std::move(retry);
-  statics_refused_ = refused;
+  run_kernels(solver_, sc, m, opt_, x, optional_statics ? &refused : nullptr);
+  if (!refused.empty()) statics_refused_ = refused;
 }
 
 /// The fourth mesh's solve: optional, so a failure only leaves the extrapolation with three.
@@ -427,6 +409,19 @@ void SolvePipeline::compare_time_with_plan() {
 
 Result Solver::solve(const Scene& scene, const Discretization& mesh, const Options& options) const {
   return detail::SolvePipeline(*this, scene, mesh, options).run();
+}
+
+Result Solver::solve_default(const Scene& scene, Options options) const {
+  options.refine_to_tolerance = true;
+  Discretization mesh;
+  try {
+    mesh = meshes(scene, options).default_mesh;
+  } catch (const InputError& e) {
+    Result r;
+    r.summary.raise(Status::InvalidInput, e.what());
+    return r;
+  }
+  return solve(scene, mesh, options);
 }
 
 }  // namespace modalbench

@@ -77,6 +77,7 @@ class SolvePipeline {
   std::vector<std::string> missing_;  ///< requested quantities the back-end does not compute
   Scene light_;                       ///< what the error estimate needs: modes and statics
 
+  MeshFamily family_;  ///< the back-end's meshes for the scene (where an estimate is wanted)
   bool wants_estimate_ = false;
   bool check_is_finer_ = false;  ///< the mesh has no coarser one: it is checked against a finer one
   std::optional<CoarserMesh> coarse_, coarser2_, coarser3_;

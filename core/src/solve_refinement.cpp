@@ -22,7 +22,7 @@ void SolvePipeline::refine_mesh() {
     RefinementWindow w = start_refinement();
     // How far the estimates are from what this machine does: later steps are predicted with it.
     double last_estimate = solver_.estimate(light_, final_mesh_, opt_).seconds, last_time = w.cur.summary.total_time_s;
-    const int steps = solver_.refinement_steps(scene_);
+    const int steps = family_.refinement_steps;
     for (int step = 0; step < steps && !verdict_->second.empty() && !extrapolation_answers(w); ++step)
       if (!refinement_step(w, last_estimate, last_time)) break;
     keep_refinement_solves(w);
@@ -95,7 +95,7 @@ bool SolvePipeline::refinement_step(RefinementWindow& w, double& last_estimate, 
   if (const double fx = extrapolation_factor(w); fx < factor) factor = fx;
   factor = std::clamp(factor, 1.5, 4.0);
   const std::optional<Discretization> next =
-      solver_.finer_mesh(scene_, final_mesh_, std::isfinite(factor) ? factor : 4.0);
+      family_.finer_than(final_mesh_, std::isfinite(factor) ? factor : 4.0);
   if (!next) return false;
   const ResourceEstimate ne = solver_.estimate(scene_, *next, opt_);
   // The estimates calibrated on the last solve, both ways once it is long enough to be measured

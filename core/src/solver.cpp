@@ -1,6 +1,7 @@
 #include "modalbench/solver.hpp"
 
-// The interface's small types: statuses, the summary, mass models, mode families, mesh specs.
+// The interface's small types: statuses, the summary, mass models, mode families, mesh specs and
+// families.
 // The pipeline of Solver::solve is in solve_pipeline.cpp.
 #include <fmt/format.h>
 
@@ -99,6 +100,23 @@ std::string Discretization::spec() const {
     s += std::to_string(counts[i]);
   }
   return s;
+}
+
+std::optional<CoarserMesh> MeshFamily::coarser_than(const Discretization& mesh) const {
+  return coarser ? coarser(mesh) : std::nullopt;
+}
+
+std::optional<Discretization> MeshFamily::finer_than(const Discretization& mesh, double factor) const {
+  return finer ? finer(mesh, factor) : std::nullopt;
+}
+
+MeshFamily MeshFamily::single(const Discretization& mesh) {
+  MeshFamily f;
+  f.default_mesh = mesh;
+  f.ladder = {mesh};
+  f.theory = mesh;
+  f.stress = {mesh};
+  return f;
 }
 
 Discretization Discretization::parse(const std::string& spec) {

@@ -2,7 +2,7 @@
 // Private to dtfm: a spinning axisymmetric shaft (scene [rotor]) on the one-prism line. With
 // r = v + i w and the section's tilt turning as one complex number, each whirl direction of a shaft
 // on isotropic supports is a planar (x-z) prism line whose rotary inertia is changed per direction
-// (as exact's whirl_line.hpp, ../shared/ROTORS.md 1.5):
+// (as exact's whirl_line.hpp):
 //   rho I omega^2 -> rho I omega^2 - s rho I_p Omega omega,   J_t omega^2 -> J_t omega^2 - s J_p Omega omega,
 // s = +1 forward, -1 backward (PrismModel::G, PrismModel::whirl). Every quadratic form
 // x' (K - omega^2 M + s omega Omega G) x has one positive root, so the Wittrick-Williams count of

@@ -11,7 +11,6 @@
 #include "exact_shapes.hpp"
 #include "plate_responses.hpp"
 #include "rotor.hpp"
-#include "modalbench/timer.hpp"
 
 namespace modalbench::exact {
 
@@ -92,69 +91,61 @@ void beam_statics(const Scene& s, Result& r) {
   for (auto& p : s.request.probes) xs.push_back(p[0]);
   std::vector<Deflection> defl(xs.size());
   for (std::size_t i = 0; i < xs.size(); ++i) defl[i].position = {xs[i], 0.0};
-  try {
-    std::vector<LineLoad> lz, la, ly, lt;
-    for (auto& p : s.all_point_loads()) {
-      lz.push_back({p.x, p.Fz, p.My});
-      la.push_back({p.x, p.Fx, 0});
-      ly.push_back({p.x, p.Fy, p.Mz});
-      lt.push_back({p.x, p.Mx, 0});
-    }
-    DistributedLineLoads dz, da, dy;
-    for (const DistributedLoad& q : s.all_distributed_loads()) {
-      auto add = [&](DistributedLineLoads& to, const std::array<double, 2>& v) {
-        if (v[0] != 0.0 || v[1] != 0.0) to.push_back({q.from[0], q.to[0], v[0], v[1]});
-      };
-      add(dz, q.qz);
-      add(da, q.qx);
-      add(dy, q.qy);
-    }
-    long& n = r.summary.unknowns;
-    std::vector<SupportReaction> rz, ra, ry, rt;
-    auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n, line_points(s, ModeFamily::BendingXZ), dz, &rz);
-    for (std::size_t i = 0; i < xs.size(); ++i) {
-      defl[i].w = wz[i].w;
-      defl[i].theta_y = wz[i].theta;
-      defl[i].has_forces = true;
-      defl[i].forces.My = wz[i].M;
-      defl[i].forces.Qz = wz[i].Q;
-    }
-    if (carries_axial(s.physics)) {
-      std::vector<double> N;
-      auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da, &ra, &N);
-      for (std::size_t i = 0; i < xs.size(); ++i) {
-        defl[i].u = u[i];
-        defl[i].forces.N = N[i];
-      }
-    }
-    if (carries_xy(s.physics)) {
-      auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy, &ry);
-      for (std::size_t i = 0; i < xs.size(); ++i) {
-        defl[i].v = wy[i].w;
-        defl[i].theta_z = wy[i].theta;
-        defl[i].forces.Mz = wy[i].M;
-        defl[i].forces.Qy = wy[i].Q;
-      }
-    }
-    if (carries_torsion(s.physics)) {
-      std::vector<double> T;
-      auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt, &T);
-      for (std::size_t i = 0; i < xs.size(); ++i) {
-        defl[i].theta_x = t[i];
-        defl[i].forces.T = T[i];
-      }
-    }
-    r.deflections = defl;
-    // Bending in x-z: Fz and My (the line's moment is My already, moment_sign applied); in x-y:
-    // Fy and Mz; the bars: Fx and Mx.
-    r.reactions = gather_reactions(s, rz, ra, ry, rt);
-  } catch (const std::runtime_error& e) {
-    // Only a mechanism is the input's fault; any other failure is a numerical breakdown.
-    if (std::string(e.what()).rfind("mechanism", 0) == 0)
-      r.summary.raise(Status::InvalidInput, s.source + ": supports: static solve impossible: " + e.what());
-    else
-      r.summary.raise(Status::NumericalIssue, std::string("exact: statics: ") + e.what());
+  std::vector<LineLoad> lz, la, ly, lt;
+  for (auto& p : s.all_point_loads()) {
+    lz.push_back({p.x, p.Fz, p.My});
+    la.push_back({p.x, p.Fx, 0});
+    ly.push_back({p.x, p.Fy, p.Mz});
+    lt.push_back({p.x, p.Mx, 0});
   }
+  DistributedLineLoads dz, da, dy;
+  for (const DistributedLoad& q : s.all_distributed_loads()) {
+    auto add = [&](DistributedLineLoads& to, const std::array<double, 2>& v) {
+      if (v[0] != 0.0 || v[1] != 0.0) to.push_back({q.from[0], q.to[0], v[0], v[1]});
+    };
+    add(dz, q.qz);
+    add(da, q.qx);
+    add(dy, q.qy);
+  }
+  long& n = r.summary.unknowns;
+  std::vector<SupportReaction> rz, ra, ry, rt;
+  auto wz = beam_static(bending_xz(s), bend(s.x0), bend(s.xL), lz, xs, -1.0, &n, line_points(s, ModeFamily::BendingXZ), dz, &rz);
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    defl[i].w = wz[i].w;
+    defl[i].theta_y = wz[i].theta;
+    defl[i].has_forces = true;
+    defl[i].forces.My = wz[i].M;
+    defl[i].forces.Qz = wz[i].Q;
+  }
+  if (carries_axial(s.physics)) {
+    std::vector<double> N;
+    auto u = bar_static(axial_bar(s), s.x0.axial, s.xL.axial, la, xs, &n, line_points(s, ModeFamily::Axial), da, &ra, &N);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      defl[i].u = u[i];
+      defl[i].forces.N = N[i];
+    }
+  }
+  if (carries_xy(s.physics)) {
+    auto wy = beam_static(bending_xy(s), bend(s.x0), bend(s.xL), ly, xs, +1.0, &n, line_points(s, ModeFamily::BendingXY), dy, &ry);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      defl[i].v = wy[i].w;
+      defl[i].theta_z = wy[i].theta;
+      defl[i].forces.Mz = wy[i].M;
+      defl[i].forces.Qy = wy[i].Q;
+    }
+  }
+  if (carries_torsion(s.physics)) {
+    std::vector<double> T;
+    auto t = bar_static(torsion_bar(s), s.x0.torsional, s.xL.torsional, lt, xs, &n, line_points(s, ModeFamily::Torsion), {}, &rt, &T);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      defl[i].theta_x = t[i];
+      defl[i].forces.T = T[i];
+    }
+  }
+  r.deflections = defl;
+  // Bending in x-z: Fz and My (the line's moment is My already, moment_sign applied); in x-y:
+  // Fy and Mz; the bars: Fx and Mx.
+  r.reactions = gather_reactions(s, rz, ra, ry, rt);
 }
 
 void beam_frf(const Scene& s, Result& r) {
@@ -177,22 +168,6 @@ void beam_frf(const Scene& s, Result& r) {
     }
   }
   note_frf_omissions(r.summary, skipped, f.points, reason);
-}
-
-void solve_beam(const Scene& s, ModeList& list, Result& r, Timer& timer) {
-  r.summary.method = fmt::format("exact {} beam: dynamic stiffness + Wittrick-Williams count", to_string(s.theory));
-  if (s.request.modes > 0) {
-    beam_modes(s, list, r);
-    r.summary.timings_s.modes += timer.lap();
-  }
-  if (!s.request.probes.empty()) {
-    beam_statics(s, r);
-    r.summary.timings_s.statics += timer.lap();
-  }
-  if (s.request.frf) {
-    beam_frf(s, r);
-    r.summary.timings_s.frf += timer.lap();
-  }
 }
 
 void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
@@ -225,25 +200,6 @@ void plate_modes(const Scene& s, PlateMethod pm, ModeList& list, Result& r) {
       break;
     }
     case PlateMethod::None: break;
-  }
-}
-
-void solve_plate(const Scene& s, const Options& o, ModeList& list, Result& r, Timer& timer) {
-  std::string why;
-  const PlateMethod pm = plate_method(s, why);
-  if (s.request.modes > 0) {
-    if (pm == PlateMethod::None) throw std::runtime_error(why);
-    plate_modes(s, pm, list, r);
-    r.summary.timings_s.modes += timer.lap();
-  }
-  if (pm != PlateMethod::Navier) return;
-  if (!s.request.probes.empty()) {
-    detail::navier_statics(s, static_cast<int>(o.resolved.get_integer("navier_static_terms")), r);
-    r.summary.timings_s.statics += timer.lap();
-  }
-  if (s.request.frf) {
-    detail::navier_frf(s, static_cast<int>(o.resolved.get_integer("navier_frf_terms")), r);
-    r.summary.timings_s.frf += timer.lap();
   }
 }
 
@@ -346,6 +302,50 @@ bool plate_shapes(const Scene& s, const std::vector<ModeEntry>& modes, ModeShape
   return true;
 }
 
+/// The exact references of one scene: beams and bars by their lines' dynamic stiffness, plates by
+/// Navier, Levy and the Mindlin closed form (the scene's supports choose).
+class ExactKernels final : public Kernels {
+ public:
+  ExactKernels(const Scene& s, const Options& o) : s_(s), o_(o) {}
+
+  void modes(Result& r) override {
+    if (s_.is_beam()) {
+      beam_modes(s_, list_, r);
+    } else {
+      std::string why;
+      const PlateMethod pm = plate_method(s_, why);
+      if (pm == PlateMethod::None) throw std::runtime_error(why);
+      plate_modes(s_, pm, list_, r);
+    }
+    auto& modes = list_.modes;
+    std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.omega < y.omega; });
+    if (static_cast<int>(modes.size()) > s_.request.modes) modes.resize(s_.request.modes);
+    for (const auto& e : modes) {
+      r.frequencies_rad_s.push_back(e.omega);
+      r.mode_families.push_back(e.family);
+    }
+  }
+  void shapes(Result& r) override {
+    if (s_.is_beam()) r.mode_shapes = beam_shapes(s_, list_.modes);
+    else if (!plate_shapes(s_, list_.modes, r.mode_shapes))
+      r.summary.warnings.push_back("mode shapes are not computed for the exact Mindlin plate");
+  }
+  void statics(Result& r) override {
+    if (s_.is_beam()) beam_statics(s_, r);
+    else detail::navier_statics(s_, static_cast<int>(o_.resolved.get_integer("navier_static_terms")), r);
+  }
+  void frf(Result& r) override {
+    if (s_.is_beam()) beam_frf(s_, r);
+    else detail::navier_frf(s_, static_cast<int>(o_.resolved.get_integer("navier_frf_terms")), r);
+  }
+  void campbell(Result& r) override { r.campbell = detail::rotor_campbell(s_, r.summary); }
+
+ private:
+  const Scene& s_;
+  const Options& o_;
+  ModeList list_;
+};
+
 }  // namespace
 
 Capability ExactSolver::supports(const Scene& s) const {
@@ -429,38 +429,15 @@ ResourceEstimate ExactSolver::estimate(const Scene& s, const Discretization&, co
   return e;
 }
 
-void ExactSolver::do_solve(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const {
+std::unique_ptr<Kernels> ExactSolver::build(const Scene& s, const Discretization& mesh, const Options& o,
+                                            Result& r) const {
   if (!mesh.counts.empty())
     throw InputError("command line", "--mesh", "the exact back-end has no mesh (got '" + mesh.spec() + "')");
-  Timer timer;
   r.summary.converges_to_scene_theory = true;  // it is the scene's theory
   r.summary.model = fmt::format("the exact {} {}", to_string(s.theory), to_string(s.kind));
-  ModeList list;
-  if (s.is_beam()) solve_beam(s, list, r, timer);
-  else solve_plate(s, o, list, r, timer);
-  auto& modes = list.modes;
-  std::stable_sort(modes.begin(), modes.end(), [](auto& x, auto& y) { return x.omega < y.omega; });
-  if (static_cast<int>(modes.size()) > s.request.modes) modes.resize(s.request.modes);
-  for (const auto& e : modes) {
-    r.frequencies_rad_s.push_back(e.omega);
-    r.mode_families.push_back(e.family);
-  }
-  if (s.request.shapes && !modes.empty()) {
-    Timer shapes_timer;
-    if (s.is_beam()) r.mode_shapes = beam_shapes(s, modes);
-    else if (!plate_shapes(s, modes, r.mode_shapes))
-      r.summary.warnings.push_back("mode shapes are not computed for the exact Mindlin plate");
-    r.summary.timings_s.modes += shapes_timer.lap();
-  }
-  if (s.rotor) {
-    // Its failure is the Campbell diagram's alone: the modes and statics stand.
-    try {
-      r.campbell = detail::rotor_campbell(s, r.summary);
-    } catch (const std::runtime_error& e) {
-      r.summary.raise(Status::NumericalIssue, std::string("exact: Campbell diagram: ") + e.what());
-    }
-    r.summary.timings_s.campbell += timer.lap();
-  }
+  if (s.is_beam())
+    r.summary.method = fmt::format("exact {} beam: dynamic stiffness + Wittrick-Williams count", to_string(s.theory));
+  return std::make_unique<ExactKernels>(s, o);
 }
 
 }  // namespace modalbench::exact

@@ -3,7 +3,7 @@
 // line. With r = v + i w and the tilt phi (the rotations as one complex number turning in the spin's
 // sense), a shaft on isotropic supports whirling as e^{i omega t} obeys the planar Timoshenko
 // equations with the rotary inertia of the section and of the discs changed per direction
-// (../shared/ROTORS.md 1.5, re-derived: H = J_p Omega n + J_t (theta_y', theta_z') gives
+// (derived from the angular momentum H = J_p Omega n + J_t (theta_y', theta_z') gives
 // J_t theta_y'' + J_p Omega theta_z' = M_y, J_t theta_z'' - J_p Omega theta_y' = M_z):
 //   rho I omega^2  ->  rho I omega^2 - s rho I_p Omega omega,   J_t omega^2  ->  J_t omega^2 - s J_p Omega omega,
 // s = +1 for forward whirl (in the spin's sense), -1 for backward, omega > 0. The count stays exact:

@@ -101,12 +101,12 @@ std::vector<RunRecord> richardson_runs(const Solver& s, const Scene& scene, cons
   for (std::size_t k = 2; k < runs.size(); ++k) {
     const RunRecord &f = *runs[k], &c = *runs[k - 1], &cc = *runs[k - 2];
     if (f.failed() || c.failed() || cc.failed() || !f.result.summary.converges_to_scene_theory) continue;
-    Options opt;
-    const std::optional<CoarserMesh> h = s.coarser_mesh(scene, f.mesh, opt);
-    const std::optional<CoarserMesh> hh = s.coarser_mesh(scene, c.mesh, opt);
+    const MeshFamily family = s.meshes(scene, Options{});
+    const std::optional<CoarserMesh> h = family.coarser_than(f.mesh);
+    const std::optional<CoarserMesh> hh = family.coarser_than(c.mesh);
     if (!h || !hh || h->mesh.counts != c.mesh.counts || hh->mesh.counts != cc.mesh.counts) continue;
     // The rung below, where it is the next coarsening again, checks the extrapolated values' order.
-    const std::optional<CoarserMesh> hhh = s.coarser_mesh(scene, cc.mesh, opt);
+    const std::optional<CoarserMesh> hhh = family.coarser_than(cc.mesh);
     const RunRecord* ccc =
         k >= 3 && hhh && hhh->mesh.counts == runs[k - 3]->mesh.counts && !runs[k - 3]->failed() ? runs[k - 3] : nullptr;
     const ExtrapolationMesh fourth{ccc ? &ccc->result : nullptr, hhh ? hhh->ratio : kNaN};
@@ -260,27 +260,126 @@ double time_to_accuracy(const SceneComparison& c, const std::string& label, doub
   return best;
 }
 
+namespace {
+
+/// The scene of the timed runs: the time history and the Campbell diagram are each back-end's
+/// default solves of their own (transient_runs, rotor_runs), not part of the ladder's timings.
+Scene timed_scene(const Scene& input, const Registry& registry, const CompareOptions& opt, SceneComparison& c) {
+  // The time history is not compared (yet): its timed runs would charge it to the modes.
+  Scene scene = input;
+  c.transients = transient_runs(input, registry, opt);
+  c.transient = input.request.transient;
+  if (scene.request.transient) {
+    scene.request.transient.reset();
+    c.notes.push_back("the scene's time history ([request.transient]) is not in the timed runs: each back-end's "
+                      "default solve of it is shown in its own section");
+  }
+  c.rotor_runs = rotor_runs(input, registry, opt);
+  c.rotor = input.rotor;
+  if (scene.rotor) {
+    scene.rotor.reset();
+    c.notes.push_back("the scene's Campbell diagram ([rotor]) is not in the timed runs (they time the shaft at "
+                      "rest): each back-end's default solve of it is shown in its own section");
+  }
+  return scene;
+}
+
+/// One back-end over its mesh ladder, within the time budget (each rung predicted from the last),
+/// and its extrapolated peers.
+void ladder_runs(const Solver& s, const Scene& scene, const CompareOptions& opt, SceneComparison& c) {
+  std::vector<Discretization> ladder = s.meshes(scene, Options{}).ladder;
+  if (opt.quick && ladder.size() > 3) ladder.resize(3);
+  double spent = 0, last_time = 0, last_spent = 0, growth = 2.0;
+  for (std::size_t k = 0; k < ladder.size(); ++k) {
+    if (k > 0 && spent + last_spent * growth > opt.budget_s) {
+      c.notes.push_back(fmt::format("{}: ladder stopped before mesh {} (time budget {:.0f} s per back-end)", s.name(),
+                                    ladder[k].spec(), opt.budget_s));
+      if (opt.progress)
+        *opt.progress << fmt::format("[{}] {}: ladder stopped before mesh {} (time budget {:.0f} s)\n", scene.name,
+                                     s.name(), ladder[k].spec(), opt.budget_s);
+      break;
+    }
+    if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...", scene.name, s.name(), ladder[k].spec()) << std::flush;
+    RunRecord rec = timed_run(s, scene, ladder[k], opt);
+    spent += rec.spent_s;
+    if (last_time > 0 && rec.median_s > 0) growth = std::clamp(rec.median_s / last_time, 1.5, 16.0);
+    last_time = rec.median_s;
+    last_spent = rec.spent_s;
+    if (opt.progress)
+      *opt.progress << fmt::format(" {} in {:.3g} s (x{})\n", to_string(rec.result.summary.status), rec.median_s,
+                                   rec.repeats);
+    c.runs.push_back(std::move(rec));
+  }
+  std::vector<const RunRecord*> own;
+  for (const auto& r : c.runs)
+    if (r.backend == s.name()) own.push_back(&r);
+  for (auto& rec : richardson_runs(s, scene, own)) c.runs.push_back(std::move(rec));
+}
+
+/// The exact back-end's results as the reference, where it succeeded, with its deflection line
+/// on a fine grid for the plots.
+void exact_reference(const Scene& scene, const Registry& registry, SceneComparison& c) {
+  for (const auto& r : c.runs) {
+    if (r.backend != "exact") continue;
+    const Result& x = r.result;
+    if (!x.frequencies_rad_s.empty() && x.summary.status == Status::Success) {
+      c.reference.source = "exact";
+      c.reference.frequencies_rad_s = x.frequencies_rad_s;
+      c.reference.families = x.mode_families;
+      c.reference.frequency_uncertainty.assign(x.frequencies_rad_s.size(), 0.0);
+      c.reference.shapes = x.mode_shapes;
+    }
+    if (x.summary.status == Status::Success) {
+      c.reference.deflections = x.deflections;
+      c.reference.frf = x.frf;
+    }
+  }
+  if (c.reference.source == "exact" && scene.is_beam() && !scene.loads.empty() && !c.reference.deflections.empty()) {
+    Scene fine = scene;
+    fine.request.modes = 0;
+    fine.request.frf.reset();
+    fine.request.probes.clear();
+    for (int i = 0; i <= 100; ++i) fine.request.probes.push_back({scene.geometry.length * i / 100.0, 0.0});
+    const Result line = registry.get("exact").solve(fine, {}, Options{});
+    if (line.ok()) c.reference.deflection_line = line.deflections;
+  }
+}
+
+/// Without an exact solution: the back-end whose Richardson limit is the most certain, or none.
+void best_richardson_reference(const Registry& registry, SceneComparison& c) {
+  std::optional<Reference> best;
+  double best_unc = std::numeric_limits<double>::infinity();
+  for (const Solver* s : registry.all()) {
+    auto ref = richardson_reference(c.runs, s->name());
+    if (!ref) continue;
+    double worst = 0;
+    for (std::size_t i = 0; i < ref->frequencies_rad_s.size() && i < 6; ++i)
+      worst = std::max(worst, ref->frequency_uncertainty[i] / ref->frequencies_rad_s[i]);
+    if (std::isfinite(worst) && worst < best_unc) {
+      best_unc = worst;
+      best = std::move(ref);
+    }
+  }
+  if (best) {
+    c.notes.push_back(fmt::format("no exact solution: errors are against {} (relative uncertainty up to {:.1e})",
+                                  best->source, best_unc));
+    best->deflections = c.reference.deflections;
+    best->frf = c.reference.frf;
+    c.reference = std::move(*best);
+  } else {
+    c.reference.source = "none";
+    c.notes.push_back("no exact solution and no back-end converged well enough for a Richardson estimate: errors not measured");
+  }
+}
+
+}  // namespace
+
 std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, const Registry& registry,
                                             const CompareOptions& opt) {
   std::vector<SceneComparison> out;
   for (const Scene& input : scenes) {
     SceneComparison c;
-    // The time history is not compared (yet): its timed runs would charge it to the modes.
-    Scene scene = input;
-    c.transients = transient_runs(input, registry, opt);
-    c.transient = input.request.transient;
-    if (scene.request.transient) {
-      scene.request.transient.reset();
-      c.notes.push_back("the scene's time history ([request.transient]) is not in the timed runs: each back-end's "
-                        "default solve of it is shown in its own section");
-    }
-    c.rotor_runs = rotor_runs(input, registry, opt);
-    c.rotor = input.rotor;
-    if (scene.rotor) {
-      scene.rotor.reset();
-      c.notes.push_back("the scene's Campbell diagram ([rotor]) is not in the timed runs (they time the shaft at "
-                        "rest): each back-end's default solve of it is shown in its own section");
-    }
+    const Scene scene = timed_scene(input, registry, opt, c);
     c.scene = scene;
     for (const Solver* s : registry.all()) {
       const Capability cap = s->supports(scene);
@@ -289,88 +388,13 @@ std::vector<SceneComparison> run_comparison(const std::vector<Scene>& scenes, co
         if (opt.progress) *opt.progress << fmt::format("[{}] {}: skipped ({})\n", scene.name, s->name(), cap.reason);
         continue;
       }
-      std::vector<Discretization> ladder = s->mesh_ladder(scene);
-      if (opt.quick && ladder.size() > 3) ladder.resize(3);
-      double spent = 0, last_time = 0, last_spent = 0, growth = 2.0;
-      for (std::size_t k = 0; k < ladder.size(); ++k) {
-        if (k > 0 && spent + last_spent * growth > opt.budget_s) {
-          c.notes.push_back(fmt::format("{}: ladder stopped before mesh {} (time budget {:.0f} s per back-end)",
-                                        s->name(), ladder[k].spec(), opt.budget_s));
-          if (opt.progress)
-            *opt.progress << fmt::format("[{}] {}: ladder stopped before mesh {} (time budget {:.0f} s)\n", scene.name,
-                                         s->name(), ladder[k].spec(), opt.budget_s);
-          break;
-        }
-        if (opt.progress) *opt.progress << fmt::format("[{}] {} --mesh {} ...", scene.name, s->name(), ladder[k].spec()) << std::flush;
-        RunRecord rec = timed_run(*s, scene, ladder[k], opt);
-        spent += rec.spent_s;
-        if (last_time > 0 && rec.median_s > 0) growth = std::clamp(rec.median_s / last_time, 1.5, 16.0);
-        last_time = rec.median_s;
-        last_spent = rec.spent_s;
-        if (opt.progress)
-          *opt.progress << fmt::format(" {} in {:.3g} s (x{})\n", to_string(rec.result.summary.status), rec.median_s,
-                                       rec.repeats);
-        c.runs.push_back(std::move(rec));
-      }
-      std::vector<const RunRecord*> own;
-      for (const auto& r : c.runs)
-        if (r.backend == s->name()) own.push_back(&r);
-      for (auto& rec : richardson_runs(*s, scene, own)) c.runs.push_back(std::move(rec));
+      ladder_runs(*s, scene, opt, c);
     }
     for (const auto& extra : opt.extra_references)
       for (auto& rec : extra(scene, opt.progress)) c.runs.push_back(std::move(rec));
-
     // The reference: the exact back-end where it succeeded, else Richardson.
-    for (const auto& r : c.runs) {
-      if (r.backend != "exact") continue;
-      const Result& x = r.result;
-      if (!x.frequencies_rad_s.empty() && x.summary.status == Status::Success) {
-        c.reference.source = "exact";
-        c.reference.frequencies_rad_s = x.frequencies_rad_s;
-        c.reference.families = x.mode_families;
-        c.reference.frequency_uncertainty.assign(x.frequencies_rad_s.size(), 0.0);
-        c.reference.shapes = x.mode_shapes;
-      }
-      if (x.summary.status == Status::Success) {
-        c.reference.deflections = x.deflections;
-        c.reference.frf = x.frf;
-      }
-    }
-    // The exact deflection line on a fine grid, for the plots.
-    if (c.reference.source == "exact" && scene.is_beam() && !scene.loads.empty() && !c.reference.deflections.empty()) {
-      Scene fine = scene;
-      fine.request.modes = 0;
-      fine.request.frf.reset();
-      fine.request.probes.clear();
-      for (int i = 0; i <= 100; ++i) fine.request.probes.push_back({scene.geometry.length * i / 100.0, 0.0});
-      const Result line = registry.get("exact").solve(fine, {}, Options{});
-      if (line.ok()) c.reference.deflection_line = line.deflections;
-    }
-    if (c.reference.frequencies_rad_s.empty()) {
-      std::optional<Reference> best;
-      double best_unc = std::numeric_limits<double>::infinity();
-      for (const Solver* s : registry.all()) {
-        auto ref = richardson_reference(c.runs, s->name());
-        if (!ref) continue;
-        double worst = 0;
-        for (std::size_t i = 0; i < ref->frequencies_rad_s.size() && i < 6; ++i)
-          worst = std::max(worst, ref->frequency_uncertainty[i] / ref->frequencies_rad_s[i]);
-        if (std::isfinite(worst) && worst < best_unc) {
-          best_unc = worst;
-          best = std::move(ref);
-        }
-      }
-      if (best) {
-        c.notes.push_back(fmt::format("no exact solution: errors are against {} (relative uncertainty up to {:.1e})",
-                                      best->source, best_unc));
-        best->deflections = c.reference.deflections;
-        best->frf = c.reference.frf;
-        c.reference = std::move(*best);
-      } else {
-        c.reference.source = "none";
-        c.notes.push_back("no exact solution and no back-end converged well enough for a Richardson estimate: errors not measured");
-      }
-    }
+    exact_reference(scene, registry, c);
+    if (c.reference.frequencies_rad_s.empty()) best_richardson_reference(registry, c);
     // The extrapolated peers are judged against the exact solution only: without one (a free plate)
     // their limit would be a Richardson limit of their own, of two or three rungs.
     if (c.reference.source != "exact") {

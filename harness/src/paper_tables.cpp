@@ -18,26 +18,26 @@ PublishedTable published_table(const std::string& scene_name) {
   if (scene_name == "paper-fixed-beam") {
     return {"Table 1 of the prism paper (clamped-clamped beam), rad/s",
             {{"paper: 1 prism", {6211.15, 13848.36, 22763.93, 32186.47, 41982.17, 47172.88},
-              "Timoshenko beam; reproduced with G = 8e10 Pa (ERRATA 1; printed 8e11)"},
+              "Timoshenko beam; reproduced with G = 8e10 Pa (P1; printed 8e11)"},
              {"paper: 4 prisms", {6191.7, 13568.31, 21184.5, 29587.12, 38913.2, 41321.6},
-              "depends on division details the paper does not give (ERRATA 7): a few % target"},
+              "depends on division details the paper does not give (P7): a few % target"},
              {"paper: FEM 2x2x5", {6164.68, 13682.26, 22817.3, 33288.92, 42763.4, 45807.18},
-              "ANSYS 20-node bricks; the 6th value could not be reproduced (ERRATA 8)"},
+              "ANSYS 20-node bricks; the 6th value could not be reproduced (P8)"},
              {"paper: FEM 20x20x80", {6080.93, 13381.3, 21901.29, 30888.13, 40216.78, 43225.17},
               "ANSYS, 32000 20-node bricks"},
-             {"3D converged (ERRATA 8)", {6079.75, 13380.23, 21900.37, 30888.10, 40216.80, 43225.29},
+             {"3D converged (P8)", {6079.75, 13380.23, 21900.37, 30888.10, 40216.80, 43225.29},
               "20-node hexahedra, reduced integration, converged bending modes"}}};
   }
   if (scene_name == "paper-ss-plate") {
     return {"Table 2 of the prism paper (simply supported plate), rad/s",
             {{"paper: exact (57)", {1692, 3036, 5276, 5425, 6769, 8412, 9009, 11648},
-              "Eq. (57) with nu = 0.3, rho = 8000 (ERRATA 2); printed values are truncated"},
+              "Eq. (57) with nu = 0.3, rho = 8000 (P2); printed values are truncated"},
              {"paper: 4 prisms", {2130.35, 4003.84, 6042.83, 6314.78, 8727.93, 9259.70, 9305.27, 12852.87},
-              "edge layers 5x the inner layer stiffness; nu not known (ERRATA 2, 7)"},
+              "edge layers 5x the inner layer stiffness; nu not known (P2, P7)"},
              {"paper: 7 prisms", {1812.36, 3274.93, 5359.35, 5411.67, 7117.69, 8263.06, 9571.59, 10958.05}, ""},
              {"paper: 10 prisms", {1632.08, 2916.00, 4996.67, 5121.91, 6417.73, 7850.63, 8487.07, 10754.84}, ""},
              {"paper: FEM 2x30x50", {1633.88, 2907.732, 5039.429, 5219.819, 6427.07, 7987.185, 8459.681, 11017.57},
-              "ANSYS with nu = 0.25 (ERRATA 8): not the same plate as the exact column"}}};
+              "ANSYS with nu = 0.25 (P8): not the same plate as the exact column"}}};
   }
   using F = ModeFamily;
   if (scene_name == "nafems-fv5-deep-beam") {

@@ -11,9 +11,8 @@ std::vector<RotorRun> rotor_runs(const Scene& scene, const Registry& registry, c
   for (const Solver* s : registry.all()) {
     if (!s->supports(scene).campbell) continue;
     Options o;
-    o.refine_to_tolerance = true;
     o.max_time_s = 2 * opt.budget_s;
-    RotorRun run{s->name(), s->solve(scene, s->default_mesh(scene), o)};
+    RotorRun run{s->name(), s->solve_default(scene, o)};
     const Summary& sum = run.result.summary;
     if (opt.progress)
       *opt.progress << fmt::format("[{}] {}: Campbell diagram on mesh {}: {} ({:.3g} s)\n", scene.name, s->name(), sum.mesh,

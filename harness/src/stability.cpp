@@ -235,10 +235,10 @@ std::vector<StabilityRow> run_stability(const std::vector<StabilityCase>& cases,
       if (s == exact) continue;
       // Only where the back-end's model is the scene's theory: elsewhere the difference from
       // exact is model error (the comparison report's business), not stability.
-      const std::optional<Discretization> theory = s->theory_mesh(c.scene);
-      if (!theory) continue;
-      std::vector<Discretization> meshes = {*theory};
-      if (c.stress_meshes) meshes = s->stress_meshes(c.scene);
+      const MeshFamily family = s->meshes(c.scene, Options{});
+      if (!family.theory) continue;
+      std::vector<Discretization> meshes = {*family.theory};
+      if (c.stress_meshes) meshes = family.stress;
       for (const auto& m : meshes) {
         if (progress) *progress << fmt::format("[stability] {} | {} --mesh {} ...", c.label, s->name(), m.spec()) << std::flush;
         // With the back-end's own error estimate (a success must hold to it), except on the
@@ -248,7 +248,7 @@ std::vector<StabilityRow> run_stability(const std::vector<StabilityCase>& cases,
         // On the back-end's default mesh, as a user without --mesh gets it: refined while its
         // estimate exceeds the tolerance (within five minutes a run: the free plate's dtfm strips
         // need 180 s to reach 1e-3).
-        opts.refine_to_tolerance = !c.stress_meshes && m.spec() == s->default_mesh(c.scene).spec();
+        opts.refine_to_tolerance = !c.stress_meshes && m.spec() == family.default_mesh.spec();
         opts.max_time_s = 300;
         const Result r = s->solve(c.scene, m, opts);
         StabilityRow row = judge(c, s->name(), m, r, ex ? &*ex : nullptr);

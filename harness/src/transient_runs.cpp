@@ -30,9 +30,8 @@ std::vector<TransientRun> transient_runs(const Scene& scene, const Registry& reg
   for (const Solver* s : registry.all()) {
     if (!s->supports(scene).modes) continue;
     Options o;
-    o.refine_to_tolerance = true;
     o.max_time_s = 2 * opt.budget_s;
-    TransientRun run{s->name(), s->solve(scene, s->default_mesh(scene), o), {}};
+    TransientRun run{s->name(), s->solve_default(scene, o), {}};
     const Summary& sum = run.result.summary;
     if (opt.progress)
       *opt.progress << fmt::format("[{}] {}: time history on mesh {}: {} ({:.3g} s)\n", scene.name, s->name(), sum.mesh,

@@ -1,8 +1,9 @@
 // rfem's meshes (rfem.hpp): the default mesh from the geometry and the modes, the ladder, the
 // stress meshes, and the error estimate's coarser and finer meshes.
 #include <algorithm>
-#include <numeric>
 #include <cmath>
+#include <memory>
+#include <numeric>
 #include <vector>
 
 #include "modalbench/rfem/rfem.hpp"
@@ -39,9 +40,9 @@ int beam_mesh_on_features(const Scene& s, int n) {
   return lo;
 }
 
-}  // namespace
-
-Discretization RfemSolver::default_mesh(const Scene& s) const {
+/// About 32 segments per half-wave of a beam's highest requested mode; a plate's ~10 fragments per
+/// half-wave in each direction.
+Discretization default_mesh(const Scene& s) {
   const int k = std::max(1, s.request.modes);
   if (s.is_beam()) {
     // About 32 segments per half-wave of the highest requested mode (second order: ~1e-3).
@@ -64,7 +65,7 @@ Discretization RfemSolver::default_mesh(const Scene& s) const {
   return {{static_cast<int>(nx), static_cast<int>(ny)}};
 }
 
-std::vector<Discretization> RfemSolver::mesh_ladder(const Scene& s) const {
+std::vector<Discretization> mesh_ladder(const Scene& s) {
   std::vector<Discretization> v;
   if (s.is_beam()) {
     // Steps, supports and masses on element centres or cell boundaries, as the default mesh: off
@@ -81,14 +82,14 @@ std::vector<Discretization> RfemSolver::mesh_ladder(const Scene& s) const {
   return v;
 }
 
-std::vector<Discretization> RfemSolver::stress_meshes(const Scene& s) const {
+std::vector<Discretization> stress_meshes(const Scene& s) {
   if (s.is_beam()) return {{{10000}}, {{100000}}};
   const double a = s.geometry.length, b = s.geometry.width, longest = std::max(a, b);
   return {{{std::max(2, static_cast<int>(std::lround(100.0 * a / longest))),
             std::max(2, static_cast<int>(std::lround(100.0 * b / longest)))}}};
 }
 
-std::optional<CoarserMesh> RfemSolver::coarser_mesh(const Scene& s, const Discretization& mesh, const Options&) const {
+std::optional<CoarserMesh> coarser_mesh(const Scene& s, const Discretization& mesh) {
   // The term after h^2 is h^3, beams and plates alike (measured against the exact solutions in
   // tests/solvers/test_extrapolation_orders.cpp: the extrapolated frequencies of NAFEMS FV5's beam,
   // the Lasecka beam, the spatial cantilever and the paper plate converge at third order; only
@@ -105,7 +106,6 @@ std::optional<CoarserMesh> RfemSolver::coarser_mesh(const Scene& s, const Discre
   return std::nullopt;
 }
 
-namespace {
 /// The next mesh of a plate's graded sequence n0 x {1, 1.5, 2, 3, 4, 6, 8, ...}: x 4/3 from counts
 /// whose common divisor has the factor 3 (the last step was x 1.5), x 1.5 otherwise. Even counts
 /// stay on the sequence (a default mesh is a multiple of 8).
@@ -136,9 +136,8 @@ bool evenly_converging(const Scene& s, const Discretization& mesh) {
          std::all_of(mesh.counts.begin(), mesh.counts.end(), [](int n) { return n >= 2 && n % 2 == 0; }) &&
          s.request.probes.empty() && s.point_supports.empty() && s.masses.empty();
 }
-}  // namespace
 
-std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discretization& mesh, double factor) const {
+std::optional<Discretization> finer_mesh(const Scene& s, const Discretization& mesh, double factor) {
   // A plate whose errors fall evenly (no probe, point support or mass sits in its cells, where
   // the error changes with the place in the cell from mesh to mesh) refines by one step of its
   // graded sequence (x 1.5, then x 4/3, ...), whatever factor is asked: the refinement's last
@@ -170,10 +169,22 @@ std::optional<Discretization> RfemSolver::finer_mesh(const Scene& s, const Discr
   return d;
 }
 
-int RfemSolver::refinement_steps(const Scene& s) const {
+}  // namespace
+
+MeshFamily RfemSolver::meshes(const Scene& s, const Options&) const {
+  MeshFamily f;
+  f.default_mesh = default_mesh(s);
+  f.ladder = mesh_ladder(s);
+  f.theory = f.default_mesh;
+  f.stress = stress_meshes(s);
   // Twice the other families' where the steps are graded: two of them make one doubling (the
   // Mindlin paper plate at 1e-5 takes three).
-  return s.is_plate() && evenly_converging(s, default_mesh(s)) ? 6 : Solver::refinement_steps(s);
+  f.refinement_steps = s.is_plate() && evenly_converging(s, f.default_mesh) ? 6 : 3;
+  // The closures keep a copy of the scene: the family outlives the caller's.
+  auto scene = std::make_shared<const Scene>(s);
+  f.coarser = [scene](const Discretization& m) { return coarser_mesh(*scene, m); };
+  f.finer = [scene](const Discretization& m, double factor) { return finer_mesh(*scene, m, factor); };
+  return f;
 }
 
 }  // namespace modalbench::rfem

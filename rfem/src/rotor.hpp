@@ -8,7 +8,7 @@
 //     C_r[v, w] = -2 m = -C_r[w, v], C_r[theta_y, theta_z] = -(2 J_t - J_p) = -C_r[theta_z, theta_y],
 //     K_c = m on v, w and J_t - J_p on theta_y, theta_z (Coriolis and spin softening; the fixed
 //     frame's J_t phi'' - i J_p Omega phi' + k phi = 0 with phi = chi e^{i Omega t}).
-// ../shared/ROTORS.md 4 states the same per RFE; the signs here are re-derived for this code's axes.
+// The signs are derived for this code's axes (the appendix's A3 gives the rotating beam's matrices).
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <complex>

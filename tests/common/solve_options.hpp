@@ -22,4 +22,10 @@ inline Options as_without_mesh() {
   return o;
 }
 
+/// The back-end's default mesh for a scene (MeshFamily::default_mesh), for a test that solves on
+/// it without the default path's refinement, or checks it.
+inline Discretization default_mesh(const Solver& solver, const Scene& scene) {
+  return solver.meshes(scene, Options{}).default_mesh;
+}
+
 }  // namespace modalbench::testing

@@ -16,6 +16,7 @@
 #include "modalbench/scene.hpp"
 #include "modalbench/solver.hpp"
 #include "cantilever_scene.hpp"
+#include "fake_kernels.hpp"
 
 using namespace modalbench;
 
@@ -35,18 +36,24 @@ class SeriesSolver final : public Solver {
   std::string name() const override { return "series"; }
   std::string description() const override { return "f0 (1 + C / n^p + D / n^s) on mesh n"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("32"); }
-  std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization& m, const Options&) const override {
-    if (m.counts.empty() || m.counts[0] / 2 < coarsest_) return std::nullopt;
-    return CoarserMesh{{{m.counts[0] / 2}}, 2.0, 2.0, 4.0};
+  MeshFamily meshes(const Scene&, const Options&) const override {
+    MeshFamily f = MeshFamily::single(Discretization::parse("32"));
+    const int coarsest = coarsest_;
+    f.coarser = [coarsest](const Discretization& m) -> std::optional<CoarserMesh> {
+      if (m.counts.empty() || m.counts[0] / 2 < coarsest) return std::nullopt;
+      return CoarserMesh{{{m.counts[0] / 2}}, 2.0, 2.0, 4.0};
+    };
+    return f;
   }
 
  protected:
-  void do_solve(const Scene&, const Discretization& m, const Options&, Result& r) const override {
+  std::unique_ptr<Kernels> build(const Scene&, const Discretization& m, const Options&, Result&) const override {
     const double n = m.counts.at(0);
-    r.frequencies_rad_s = {s_.at(n)};
-    r.mode_families = {ModeFamily::BendingXZ};
-    r.summary.converges_to_scene_theory = true;
+    return testing::modes_kernel([this, n](Result& r) {
+      r.frequencies_rad_s = {s_.at(n)};
+      r.mode_families = {ModeFamily::BendingXZ};
+      r.summary.converges_to_scene_theory = true;
+    });
   }
 
  private:

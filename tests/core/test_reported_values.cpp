@@ -16,6 +16,8 @@
 #include "modalbench/scene.hpp"
 #include "modalbench/solver.hpp"
 #include "cantilever_scene.hpp"
+#include "solve_options.hpp"
+#include "fake_kernels.hpp"
 
 using namespace modalbench;
 
@@ -28,18 +30,23 @@ class Series final : public Solver {
   std::string name() const override { return "series"; }
   std::string description() const override { return "f0 (1 + C / n^2 + D / n^3) on mesh n"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("16"); }
-  std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization& m, const Options&) const override {
-    if (m.counts.empty() || m.counts[0] < 4) return std::nullopt;
-    return CoarserMesh{{{m.counts[0] / 2}}, 2.0, 2.0, 3.0};
+  MeshFamily meshes(const Scene&, const Options&) const override {
+    MeshFamily f = MeshFamily::single(Discretization::parse("16"));
+    f.coarser = [](const Discretization& m) -> std::optional<CoarserMesh> {
+      if (m.counts.empty() || m.counts[0] < 4) return std::nullopt;
+      return CoarserMesh{{{m.counts[0] / 2}}, 2.0, 2.0, 3.0};
+    };
+    return f;
   }
 
  protected:
-  void do_solve(const Scene&, const Discretization& m, const Options&, Result& r) const override {
+  std::unique_ptr<Kernels> build(const Scene&, const Discretization& m, const Options&, Result&) const override {
     const double n = m.counts.at(0);
-    r.frequencies_rad_s = {kF0 * (1.0 + kC / (n * n) + kD / (n * n * n))};
-    r.mode_families = {ModeFamily::BendingXZ};
-    r.summary.converges_to_scene_theory = true;
+    return testing::modes_kernel([n](Result& r) {
+      r.frequencies_rad_s = {kF0 * (1.0 + kC / (n * n) + kD / (n * n * n))};
+      r.mode_families = {ModeFamily::BendingXZ};
+      r.summary.converges_to_scene_theory = true;
+    });
   }
 };
 
@@ -49,7 +56,7 @@ Result default_path(double tolerance) {
   Options o;
   o.refine_to_tolerance = true;
   const Series b;
-  return b.solve(s, b.default_mesh(s), o);
+  return b.solve_default(s, o);
 }
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }

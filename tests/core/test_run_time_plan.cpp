@@ -11,6 +11,7 @@
 #include "modalbench/scene.hpp"
 #include "modalbench/solver.hpp"
 #include "cantilever_scene.hpp"
+#include "fake_kernels.hpp"
 
 using namespace modalbench;
 
@@ -22,16 +23,18 @@ class Slow final : public Solver {
   std::string name() const override { return "slow"; }
   std::string description() const override { return "sleeps, and estimates 10 ms"; }
   Capability supports(const Scene&) const override { return {true, true, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
+  MeshFamily meshes(const Scene&, const Options&) const override { return MeshFamily::single(Discretization::parse("4")); }
   ResourceEstimate estimate(const Scene&, const Discretization&, const Options&) const override {
     return {1e3, 0.010, "a fixed guess"};
   }
 
  protected:
-  void do_solve(const Scene& s, const Discretization&, const Options&, Result& r) const override {
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds_));
-    r.frequencies_rad_s.assign(static_cast<std::size_t>(s.request.modes), 1.0);
-    r.mode_families.assign(static_cast<std::size_t>(s.request.modes), ModeFamily::BendingXZ);
+  std::unique_ptr<Kernels> build(const Scene& s, const Discretization&, const Options&, Result&) const override {
+    return testing::modes_kernel([this, &s](Result& r) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds_));
+      r.frequencies_rad_s.assign(static_cast<std::size_t>(s.request.modes), 1.0);
+      r.mode_families.assign(static_cast<std::size_t>(s.request.modes), ModeFamily::BendingXZ);
+    });
   }
 
  private:

@@ -77,7 +77,7 @@ BOOST_AUTO_TEST_CASE(identity_and_supports) {
 BOOST_AUTO_TEST_CASE(lasecka_scene_against_exact) {
   const DifferenceEqSolver s;
   const Scene sc = load_scene(kDir + "/lasecka_elastic_beam.toml");
-  const Discretization mesh = s.default_mesh(sc);
+  const Discretization mesh = testing::default_mesh(s, sc);
   BOOST_REQUIRE(mesh.counts.size() == 1u);
   BOOST_TEST(mesh.counts[0] % 4 == 0);
   const Result r = s.solve(sc, mesh, testing::own_error_study());
@@ -115,7 +115,7 @@ BOOST_AUTO_TEST_CASE(lasecka_scene_against_exact) {
 BOOST_AUTO_TEST_CASE(mesh_ladder_puts_loads_on_nodes) {
   const DifferenceEqSolver s;
   const Scene sc = load_scene(kDir + "/lasecka_elastic_beam.toml");
-  const auto ladder = s.mesh_ladder(sc);
+  const auto ladder = s.meshes(sc, Options{}).ladder;
   BOOST_REQUIRE(ladder.size() >= 5u);
   for (const auto& m : ladder) {
     BOOST_TEST(m.counts[0] % 4 == 0);
@@ -169,7 +169,7 @@ BOOST_AUTO_TEST_CASE(near_mechanism_warns) {
   const Scene sc = beam_scene("x0 = { translational = 1.6667, rotational = 6.6667 }\n"
                               "xL = { translational = 1.6667, rotational = 6.6667 }",
                               "[[loads]]\nx = 0.5\nFz = -100.0");
-  const Result r = s.solve(sc, s.default_mesh(sc), testing::own_error_study());
+  const Result r = s.solve(sc, testing::default_mesh(s, sc), testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   for (const auto& w : r.summary.warnings) BOOST_TEST(w.rfind("plausibility:", 0) == 0u, w);
   BOOST_TEST(r.summary.diagnostic("support_flexibility") > 1e4);
@@ -185,7 +185,7 @@ BOOST_AUTO_TEST_CASE(near_mechanism_warns) {
 BOOST_AUTO_TEST_CASE(timoshenko_scene_says_euler_bernoulli) {
   const DifferenceEqSolver s;
   const Scene sc = load_scene(kDir + "/paper_fixed_beam.toml");
-  const Result r = s.solve(sc, s.default_mesh(sc), testing::own_error_study());
+  const Result r = s.solve(sc, testing::default_mesh(s, sc), testing::own_error_study());
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   BOOST_TEST(has(r.summary.warnings, "Euler-Bernoulli model"));
   BOOST_TEST(has(r.summary.warnings, "not computed: FRF"));
@@ -237,9 +237,9 @@ BOOST_AUTO_TEST_CASE(a_probe_off_every_node_keeps_the_error_estimate) {
   const DifferenceEqSolver s;
   Scene sc = load_scene(kDir + "/lasecka_elastic_beam.toml");
   sc.request.probes.push_back({1.6720756938488752, 0.0});
-  const Discretization mesh = s.default_mesh(sc);
+  const Discretization mesh = testing::default_mesh(s, sc);
   BOOST_TEST(mesh.counts[0] % 4 == 0);
-  BOOST_REQUIRE(s.coarser_mesh(sc, mesh, testing::own_error_study()).has_value());
+  BOOST_REQUIRE(s.meshes(sc, testing::own_error_study()).coarser_than(mesh).has_value());
   const Result r = s.solve(sc, mesh, Options{});  // with the solver's own estimate
   BOOST_REQUIRE_MESSAGE(r.ok(), r.summary.message);
   const double estimate = r.summary.error_estimate.frequencies;

@@ -1,5 +1,5 @@
 // dtfm beams against independent references: the exact Timoshenko beam, bar and torsion bar
-// (one prism), the paper's Table 1 and the converged 3D values (ERRATA 1, 7, 8), a direct
+// (one prism), the paper's Table 1 and the converged 3D values (docs/sources.md, P1, P7, P8), a direct
 // evaluation of the paper's Green's function (45)/(55) where it is well conditioned, and
 // structural checks (counts, multiplicity, reciprocity) that need no reference.
 #define BOOST_TEST_MODULE dtfm_beam
@@ -71,7 +71,7 @@ std::complex<double> direct_receptance(const PrismModel& m, double xe, double xo
 
 BOOST_AUTO_TEST_SUITE(one_prism)
 
-// Table 1, "1 prism" (G = 8e10, ERRATA 1): one prism is the exact Timoshenko beam.
+// Table 1, "1 prism" (G = 8e10, P1): one prism is the exact Timoshenko beam.
 BOOST_AUTO_TEST_CASE(table1_one_prism_column) {
   const double table[] = {6211.15, 13848.36, 22763.93, 32186.47, 41982.17, 47172.88};
   const Scene s = paper_beam();
@@ -261,9 +261,9 @@ BOOST_AUTO_TEST_SUITE_END()
 BOOST_AUTO_TEST_SUITE(paper_table1)
 
 // Table 1, "4 prisms" (6191.7, 13568.31, 21184.5, 29587.12, 38913.2, 41321.6): the paper's
-// primary/secondary division is not fully given (ERRATA 7), so this is a few-percent target.
+// primary/secondary division is not fully given (P7), so this is a few-percent target.
 // Our 2x2 (consistent layers) lies within 6.5 % of it, and closer than one prism to the
-// converged 3D values (ERRATA 8) for modes 1-5.
+// converged 3D values (P8) for modes 1-5.
 BOOST_AUTO_TEST_CASE(four_prisms_column) {
   const double table[] = {6191.7, 13568.31, 21184.5, 29587.12, 38913.2, 41321.6};
   const double ref3d[] = {6079.75, 13380.23, 21900.37, 30888.10, 40216.80, 43225.29};
@@ -279,7 +279,7 @@ BOOST_AUTO_TEST_CASE(four_prisms_column) {
   }
 }
 
-// Refining the section moves the bending frequencies to the 3D values (ERRATA 8, 20-node
+// Refining the section moves the bending frequencies to the 3D values (P8, 20-node
 // hexahedra): within 1 % for the first four at 8x8. The printed spring model instead converges
 // to a beam with half the shear stiffness (its layers and prisms share the shear in series).
 BOOST_AUTO_TEST_CASE(section_refinement_toward_3d) {

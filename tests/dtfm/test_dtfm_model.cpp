@@ -168,7 +168,7 @@ std::pair<Eigen::MatrixXd, Eigen::MatrixXd> paper_blocks(const double c[6], doub
 
 // Two prisms joined by one layer: the layer's part of A00 is the printed A_rrk, A_rpk of
 // Eq. (38) with Eq. (25)'s stiffnesses and s_rk = P - c_r, once the printed a_rpk42, a_rpk43,
-// a_rpk44 are read with s_rk where they print s_pk (ERRATA 6; the printed form is not
+// a_rpk44 are read with s_rk where they print s_pk (docs/sources.md, P6; the printed form is not
 // symmetric). Side by side (y-normal layer; c as printed) and stacked (z-normal; c permuted).
 BOOST_AUTO_TEST_CASE(layer_blocks_eq_38) {
   const Scene s = beam_scene(Physics::Spatial, 0.25);

@@ -30,15 +30,15 @@ BOOST_AUTO_TEST_CASE(names_meshes_capabilities) {
     BOOST_TEST((c.modes && c.statics && c.frf));
   }
   // One prism: the scene's own beam theory (a cut section tends to 3D elasticity, another model).
-  BOOST_TEST(s.default_mesh(beam).spec() == "1x1");
+  BOOST_TEST(testing::default_mesh(s, beam).spec() == "1x1");
   // Six strips per half-wave across the width of the highest requested mode: the 8th mode of the
   // 1 x 0.6 m plate is (m, n) = (1, 3), so 6 (3 + 1) = 24 strips.
-  BOOST_TEST(s.default_mesh(plate).spec() == "24");
+  BOOST_TEST(testing::default_mesh(s, plate).spec() == "24");
   std::vector<std::string> ladder;
-  for (auto& d : s.mesh_ladder(beam)) ladder.push_back(d.spec());
+  for (auto& d : s.meshes(beam, Options{}).ladder) ladder.push_back(d.spec());
   BOOST_TEST((ladder == std::vector<std::string>{"1x1", "2x2", "4x4", "8x8"}));
   ladder.clear();
-  for (auto& d : s.mesh_ladder(plate)) ladder.push_back(d.spec());
+  for (auto& d : s.meshes(plate, Options{}).ladder) ladder.push_back(d.spec());
   BOOST_TEST((ladder == std::vector<std::string>{"4", "7", "10", "20", "40"}));
 }
 
@@ -263,7 +263,7 @@ BOOST_AUTO_TEST_CASE(plate_mechanism_refused_on_every_mesh) {
     }
   }
   const DtfmSolver solver;
-  const Result d = solver.solve(s, solver.default_mesh(s), testing::as_without_mesh());
+  const Result d = solver.solve(s, testing::default_mesh(solver, s), testing::as_without_mesh());
   BOOST_TEST((d.summary.status == Status::InvalidInput), d.summary.message);
 }
 
@@ -272,7 +272,7 @@ BOOST_AUTO_TEST_CASE(paper_scenes_default_meshes) {
   for (const char* file : {"paper_fixed_beam.toml", "paper_ss_plate.toml"}) {
     const Scene s = scene(file);
     const DtfmSolver solver;
-    const Result r = solver.solve(s, solver.default_mesh(s), testing::own_error_study());
+    const Result r = solver.solve(s, testing::default_mesh(solver, s), testing::own_error_study());
     BOOST_TEST_CONTEXT(file) {
       BOOST_TEST(r.ok());
       BOOST_TEST(r.frequencies_rad_s.size() == static_cast<std::size_t>(s.request.modes));

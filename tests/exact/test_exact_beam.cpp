@@ -27,8 +27,7 @@ double rel(double a, double b) { return std::abs(a / b - 1.0); }
 
 BOOST_AUTO_TEST_SUITE(timoshenko)
 
-// Hein, Table 1, "1 prism" column, with G = 8e10 Pa (ERRATA 1); the values to every digit
-// listed in ERRATA.md.
+// Hein, Table 1, "1 prism" column, with G = 8e10 Pa (docs/sources.md, P1); the values to every printed digit.
 BOOST_AUTO_TEST_CASE(paper_table1_one_prism) {
   const double E = 2e11, G = 8e10, rho = 8000, b = 0.25, h = 0.25, L = 1.0, kappa = 1.0;
   const double A = b * h, I = b * h * h * h / 12;

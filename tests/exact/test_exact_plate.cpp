@@ -1,4 +1,4 @@
-// Exact plate references against published values: the prism paper's Table 2 (ERRATA 2),
+// Exact plate references against published values: the prism paper's Table 2 (docs/sources.md, P2),
 // Leissa (1973) "The free vibration of rectangular plates", J. Sound Vib. 31(3), Tables for
 // a/b = 1, nu = 0.3, and Mindlin's thick plate (Srinivas et al. 1970: 0.0930).
 #define BOOST_TEST_MODULE exact_plate
@@ -18,7 +18,7 @@ constexpr double E = 2e11, nu = 0.3, rho = 8000;
 double D_of(double h) { return E * h * h * h / (12 * (1 - nu * nu)); }
 }  // namespace
 
-// Table 2, "Exact frequency (57)": nu = 0.3, rho = 8000 (ERRATA 2). The printed integers are
+// Table 2, "Exact frequency (57)": nu = 0.3, rho = 8000 (P2). The printed integers are
 // the computed values truncated (5425.80 is printed 5425, 9009.81 is printed 9009).
 BOOST_AUTO_TEST_CASE(paper_table2_exact_column) {
   const double h = 0.03;

@@ -1,5 +1,5 @@
 // The optional CalculiX 3D reference on the paper's beam: C3D20R bricks must land near the
-// converged 3D bending values of ERRATA 8, with torsion and axial modes labelled as such.
+// converged 3D bending values of docs/sources.md, P8, with torsion and axial modes labelled as such.
 #define BOOST_TEST_MODULE calculix
 #include <boost/test/unit_test.hpp>
 
@@ -41,7 +41,7 @@ BOOST_AUTO_TEST_CASE(paper_beam_3d, *boost::unit_test::precondition(ccx_installe
   const modalbench_test::TempDir dir("modalbench_test_ccx");
   const RunRecord r = calculix_run(s, {20, 4, 4}, "ccx", dir.str());
   BOOST_TEST_REQUIRE(!r.failed(), r.result.summary.message);
-  const double converged[] = {6079.75, 13380.23, 21900.37, 30888.10};  // ERRATA 8
+  const double converged[] = {6079.75, 13380.23, 21900.37, 30888.10};  // P8
   const auto [xz, xy, torsion, axial] = families(r);
   BOOST_REQUIRE(xz.size() >= 4u);
   for (int i = 0; i < 4; ++i) BOOST_TEST(std::abs(xz[i] / converged[i] - 1) < 0.005, "mode " << i + 1 << ": " << xz[i]);
@@ -70,7 +70,7 @@ BOOST_AUTO_TEST_CASE(b32r_beams_label_their_modes, *boost::unit_test::preconditi
   const RunRecord r = calculix_peer_run(s, Discretization::parse("64"), "ccx", dir.str());
   BOOST_TEST_REQUIRE(!r.failed(), r.result.summary.message);
   BOOST_TEST(r.backend == "calculix-B32R");
-  const double timoshenko[] = {6211.15, 13848.36, 22763.93, 32186.47};  // ERRATA 1
+  const double timoshenko[] = {6211.15, 13848.36, 22763.93, 32186.47};  // P1
   const auto [xz, xy, torsion, axial] = families(r);
   BOOST_REQUIRE(xz.size() >= 4u);
   BOOST_REQUIRE(xy.size() >= 4u);

@@ -9,6 +9,7 @@
 
 #include "modalbench/exact/exact.hpp"
 #include "modalbench/harness/comparison.hpp"
+#include "fake_kernels.hpp"
 
 using namespace modalbench;
 namespace tt = boost::test_tools;
@@ -26,24 +27,25 @@ class Phased final : public Solver {
   std::string name() const override { return "phased"; }
   std::string description() const override { return "known phase costs"; }
   Capability supports(const Scene&) const override { return {true, true, true, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
+  MeshFamily meshes(const Scene&, const Options&) const override { return MeshFamily::single(Discretization::parse("4")); }
 
  protected:
-  void do_solve(const Scene& s, const Discretization&, const Options&, Result& r) const override {
+  std::unique_ptr<Kernels> build(const Scene& s, const Discretization&, const Options&, Result&) const override {
     fake_now += 0.010;
-    if (s.request.modes > 0) {
-      fake_now += 0.020;
-      r.frequencies_rad_s.assign(static_cast<std::size_t>(s.request.modes), 1.0);
-      r.mode_families.assign(static_cast<std::size_t>(s.request.modes), ModeFamily::BendingXZ);
-    }
-    if (!s.request.probes.empty()) {
-      fake_now += 0.005;
-      r.deflections.resize(s.request.probes.size());
-    }
-    if (s.request.frf) {
-      fake_now += 0.040;
-      r.frf.push_back({1.0, {1.0, 0.0}});
-    }
+    return std::make_unique<testing::FakeKernels>(
+        [&s](Result& r) {
+          fake_now += 0.020;
+          r.frequencies_rad_s.assign(static_cast<std::size_t>(s.request.modes), 1.0);
+          r.mode_families.assign(static_cast<std::size_t>(s.request.modes), ModeFamily::BendingXZ);
+        },
+        [&s](Result& r) {
+          fake_now += 0.005;
+          r.deflections.resize(s.request.probes.size());
+        },
+        [](Result& r) {
+          fake_now += 0.040;
+          r.frf.push_back({1.0, {1.0, 0.0}});
+        });
   }
 };
 
@@ -58,17 +60,25 @@ class Scaled final : public Solver {
   std::string name() const override { return name_; }
   std::string description() const override { return "exact * scale * (1 + c/n^2 + d/n^4)"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
-  std::vector<Discretization> mesh_ladder(const Scene&) const override {
-    return {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16"), Discretization::parse("32")};
-  }
-  std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization& mesh, const Options&) const override {
-    if (std::isnan(next_) || mesh.counts.at(0) < 2) return std::nullopt;
-    return CoarserMesh{{{mesh.counts[0] / 2}}, 2.0, 2.0, next_};
+  MeshFamily meshes(const Scene&, const Options&) const override {
+    MeshFamily f = MeshFamily::single(Discretization::parse("4"));
+    f.ladder = {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16"), Discretization::parse("32")};
+    f.stress = {f.ladder.back()};
+    const double next = next_;
+    f.coarser = [next](const Discretization& mesh) -> std::optional<CoarserMesh> {
+      if (std::isnan(next) || mesh.counts.at(0) < 2) return std::nullopt;
+      return CoarserMesh{{{mesh.counts[0] / 2}}, 2.0, 2.0, next};
+    };
+    return f;
   }
 
  protected:
-  void do_solve(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const override {
+  std::unique_ptr<Kernels> build(const Scene& s, const Discretization& mesh, const Options& o, Result&) const override {
+    return testing::modes_kernel([this, &s, mesh, &o](Result& r) { fill(s, mesh, o, r); });
+  }
+
+ private:
+  void fill(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const {
     Scene modes_only = s;
     modes_only.request.probes.clear();
     modes_only.request.frf.reset();
@@ -84,7 +94,6 @@ class Scaled final : public Solver {
     fake_now += 0.001 * ms_per_n_ * n;
   }
 
- private:
   std::string name_;
   double scale_;
   bool theory_;

@@ -11,6 +11,7 @@
 #include "modalbench/harness/files.hpp"
 #include "modalbench/harness/report.hpp"
 #include "temp_dir.hpp"
+#include "fake_kernels.hpp"
 
 using namespace modalbench;
 using F = ModeFamily;
@@ -26,21 +27,25 @@ class Manufactured final : public Solver {
   std::string name() const override { return "manufactured"; }
   std::string description() const override { return "exact * (1 + c/n^2)"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("4"); }
-  std::vector<Discretization> mesh_ladder(const Scene&) const override {
-    return {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16")};
+  MeshFamily meshes(const Scene&, const Options&) const override {
+    MeshFamily f = MeshFamily::single(Discretization::parse("4"));
+    f.ladder = {Discretization::parse("4"), Discretization::parse("8"), Discretization::parse("16")};
+    f.stress = {f.ladder.back()};
+    return f;
   }
 
  protected:
-  void do_solve(const Scene& s, const Discretization& mesh, const Options& o, Result& r) const override {
-    exact::ExactSolver ex;
-    Result x = ex.solve(s, {}, o);
-    const double n = mesh.counts.at(0);
-    for (std::size_t i = 0; i < x.frequencies_rad_s.size(); ++i) {
-      r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * (1 + 0.5 * static_cast<double>(i + 1) / (n * n)));
-      r.mode_families.push_back(x.mode_families[i]);
-    }
-    r.summary.unknowns = static_cast<long>(2 * n);
+  std::unique_ptr<Kernels> build(const Scene& s, const Discretization& mesh, const Options& o, Result&) const override {
+    return testing::modes_kernel([&s, mesh, &o](Result& r) {
+      exact::ExactSolver ex;
+      Result x = ex.solve(s, {}, o);
+      const double n = mesh.counts.at(0);
+      for (std::size_t i = 0; i < x.frequencies_rad_s.size(); ++i) {
+        r.frequencies_rad_s.push_back(x.frequencies_rad_s[i] * (1 + 0.5 * static_cast<double>(i + 1) / (n * n)));
+        r.mode_families.push_back(x.mode_families[i]);
+      }
+      r.summary.unknowns = static_cast<long>(2 * n);
+    });
   }
 };
 
@@ -49,11 +54,11 @@ class Throwing final : public Solver {
   std::string name() const override { return "throwing"; }
   std::string description() const override { return "always fails"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("2"); }
+  MeshFamily meshes(const Scene&, const Options&) const override { return MeshFamily::single(Discretization::parse("2")); }
 
  protected:
-  void do_solve(const Scene&, const Discretization&, const Options&, Result&) const override {
-    throw std::runtime_error("deliberate failure");
+  std::unique_ptr<Kernels> build(const Scene&, const Discretization&, const Options&, Result&) const override {
+    return testing::modes_kernel([](Result&) { throw std::runtime_error("deliberate failure"); });
   }
 };
 
@@ -62,11 +67,11 @@ class NaNSolver final : public Solver {
   std::string name() const override { return "nan"; }
   std::string description() const override { return "returns NaN"; }
   Capability supports(const Scene&) const override { return {true, false, false, ""}; }
-  Discretization default_mesh(const Scene&) const override { return Discretization::parse("2"); }
+  MeshFamily meshes(const Scene&, const Options&) const override { return MeshFamily::single(Discretization::parse("2")); }
 
  protected:
-  void do_solve(const Scene&, const Discretization&, const Options&, Result& r) const override {
-    r.frequencies_rad_s = {1.0, std::nan("")};
+  std::unique_ptr<Kernels> build(const Scene&, const Discretization&, const Options&, Result&) const override {
+    return testing::modes_kernel([](Result& r) { r.frequencies_rad_s = {1.0, std::nan("")}; });
   }
 };
 

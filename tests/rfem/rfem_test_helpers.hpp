@@ -48,7 +48,7 @@ inline Scene beam_scene(Physics physics, Theory theory, const Support& x0, const
   return s;
 }
 
-/// The plate of the prism paper's Table 2 (1 x 0.6 x 0.03 m, nu = 0.3, rho = 8000; ERRATA 2).
+/// The plate of the prism paper's Table 2 (1 x 0.6 x 0.03 m, nu = 0.3, rho = 8000; P2).
 inline Scene plate_scene(Theory theory, const Support& x0, const Support& xL, const Support& y0, const Support& yB) {
   Scene s;
   s.name = "test-plate";

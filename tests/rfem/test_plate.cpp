@@ -1,4 +1,4 @@
-// rfem plates (Tables A1.1/A2.1 with ERRATA, plus the per-fragment Poisson/twist correction)
+// rfem plates (Tables A1.1/A2.1 with R1-R3 of docs/sources.md, plus the per-fragment Poisson/twist correction)
 // against exact plates: Navier (Kirchhoff, simply supported), Mindlin (hard simple support),
 // Levy (clamped / free edges), a Navier double series for statics; the printed Table A1.1
 // alone against the energy it actually represents; symmetry of a transposed plate; rigid modes.
@@ -99,7 +99,7 @@ std::vector<double> check_plate_convergence(const Scene& s, const std::vector<do
 
 BOOST_AUTO_TEST_SUITE(natural_frequencies)
 
-// Table 2 of the prism paper, "Exact frequency (57)" column (ERRATA 2: nu = 0.3, rho = 8000).
+// Table 2 of the prism paper, "Exact frequency (57)" column (P2: nu = 0.3, rho = 8000).
 BOOST_AUTO_TEST_CASE(table2_plate_kirchhoff_converges_to_navier) {
   const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
   const double published[] = {1692, 3036, 5276, 5425, 6769, 8412, 9009, 11648};

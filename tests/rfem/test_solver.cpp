@@ -55,15 +55,15 @@ BOOST_AUTO_TEST_CASE(identity_and_capabilities) {
 BOOST_AUTO_TEST_CASE(meshes_are_valid_and_refine) {
   const RfemSolver s;
   for (const Scene& sc : builtin_scenes()) {
-    BOOST_TEST_MESSAGE(sc.name << ": default " << s.default_mesh(sc).spec());
-    BOOST_CHECK_NO_THROW(RfemSolver::build(sc, s.default_mesh(sc)));
+    BOOST_TEST_MESSAGE(sc.name << ": default " << testing::default_mesh(s, sc).spec());
+    BOOST_CHECK_NO_THROW(RfemSolver::build_model(sc, testing::default_mesh(s, sc)));
     long prev = 0;
-    for (const auto& m : s.mesh_ladder(sc)) {
-      const long dofs = RfemSolver::build(sc, m).body_dofs();
+    for (const auto& m : s.meshes(sc, Options{}).ladder) {
+      const long dofs = RfemSolver::build_model(sc, m).body_dofs();
       BOOST_TEST(dofs > prev);
       prev = dofs;
     }
-    BOOST_TEST(s.mesh_ladder(sc).size() >= 4u);
+    BOOST_TEST(s.meshes(sc, Options{}).ladder.size() >= 4u);
   }
 }
 
@@ -76,13 +76,15 @@ BOOST_AUTO_TEST_CASE(plate_refinement_steps_along_the_graded_sequence) {
   // the one asked that keeps the counts multiples of 8, in up to 3 steps.
   const RfemSolver s;
   Scene plate = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_ss_plate.toml");
-  auto finer = [&](const std::string& mesh, double factor) { return s.finer_mesh(plate, Discretization::parse(mesh), factor)->spec(); };
+  auto finer = [&](const std::string& mesh, double factor) {
+    return s.meshes(plate, Options{}).finer_than(Discretization::parse(mesh), factor)->spec();
+  };
   BOOST_TEST(finer("112x80", 1.29) == "168x120");  // 1.5 keeps 8 | 168, 120
   BOOST_TEST(finer("56x40", 1.29) == "112x80");    // 84 x 60 is not: 2
   BOOST_TEST(finer("112x80", 2.2) == "280x200");   // 2.5
   BOOST_TEST(finer("56x40", 2.2) == "168x120");    // 2.5 gives 140 x 100: 3
   BOOST_TEST(finer("56x40", 4.0) == "224x160");
-  BOOST_TEST(s.refinement_steps(plate) == 3);
+  BOOST_TEST(s.meshes(plate, Options{}).refinement_steps == 3);
   plate.request.probes.clear();
   std::string m = "56x40";
   for (const char* next : {"84x60", "112x80", "168x120", "224x160", "336x240", "448x320"}) {
@@ -92,13 +94,13 @@ BOOST_AUTO_TEST_CASE(plate_refinement_steps_along_the_graded_sequence) {
   }
   BOOST_TEST(finer("128x128", 1.2) == "192x192");
   BOOST_TEST(finer("96x96", 1.2) == "128x128");
-  BOOST_TEST(!s.finer_mesh(plate, Discretization::parse("1600x1200"), 1.5).has_value());  // 2400 > 2000
-  BOOST_TEST(s.refinement_steps(plate) == 6);
+  BOOST_TEST(!s.meshes(plate, Options{}).finer_than(Discretization::parse("1600x1200"), 1.5).has_value());  // 2400 > 2000
+  BOOST_TEST(s.meshes(plate, Options{}).refinement_steps == 6);
   plate.masses.push_back(PointMass{});
   BOOST_TEST(finer("56x40", 1.29) == "112x80");
   const Scene beam = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/paper_fixed_beam.toml");
-  BOOST_TEST(s.finer_mesh(beam, Discretization::parse("64"), 1.5)->spec() == "96");
-  BOOST_TEST(s.refinement_steps(beam) == 3);
+  BOOST_TEST(s.meshes(beam, Options{}).finer_than(Discretization::parse("64"), 1.5)->spec() == "96");
+  BOOST_TEST(s.meshes(beam, Options{}).refinement_steps == 3);
 }
 
 BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
@@ -125,8 +127,8 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_input_errors) {
 BOOST_AUTO_TEST_CASE(builtin_scenes_solve_on_the_default_mesh) {
   const RfemSolver s;
   for (const Scene& sc : builtin_scenes()) {
-    const Result r = s.solve(sc, s.default_mesh(sc), testing::as_without_mesh());
-    BOOST_TEST_MESSAGE(sc.name << " [" << s.default_mesh(sc).spec() << "]: " << to_string(r.summary.status) << " in "
+    const Result r = s.solve(sc, testing::default_mesh(s, sc), testing::as_without_mesh());
+    BOOST_TEST_MESSAGE(sc.name << " [" << testing::default_mesh(s, sc).spec() << "]: " << to_string(r.summary.status) << " in "
                                << r.summary.total_time_s << " s; " << r.summary.method);
     BOOST_TEST(r.ok());
     BOOST_TEST(r.summary.unknowns > 0);
@@ -148,7 +150,7 @@ BOOST_AUTO_TEST_CASE(default_mesh_agrees_with_exact_solver) {
   const RfemSolver rf;
   const exact::ExactSolver ex;
   for (const Scene& sc : builtin_scenes()) {
-    const Result a = rf.solve(sc, rf.default_mesh(sc), testing::own_error_study()), b = ex.solve(sc, {}, testing::own_error_study());
+    const Result a = rf.solve(sc, testing::default_mesh(rf, sc), testing::own_error_study()), b = ex.solve(sc, {}, testing::own_error_study());
     if (!b.ok()) continue;
     const std::size_t k = std::min(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
     for (std::size_t i = 0; i < k; ++i) BOOST_TEST(rel(a.frequencies_rad_s[i], b.frequencies_rad_s[i]) < 5e-2);
@@ -184,7 +186,7 @@ BOOST_AUTO_TEST_CASE(complete_spectrum_frf_equals_per_frequency_solves) {
     const Result r = s.solve(sc, mesh, testing::own_error_study());
     BOOST_REQUIRE(r.ok());
     BOOST_TEST(r.summary.method.find("complete spectral decomposition") != std::string::npos);
-    const Model m = RfemSolver::build(sc, mesh);
+    const Model m = RfemSolver::build_model(sc, mesh);
     const System sys = assemble(m);
     const FrfPoints at = frf_points(sc, m, sys);
     std::vector<double> omegas;
@@ -231,7 +233,7 @@ BOOST_AUTO_TEST_CASE(projected_frf_is_within_its_bound_of_the_direct_solve) {
         fr.points = 200;
         sc.request.frf = fr;
       }
-      const Model m = RfemSolver::build(sc, c.mesh);
+      const Model m = RfemSolver::build_model(sc, c.mesh);
       const System sys = assemble(m);
       const auto& fr = *sc.request.frf;
       const FrfPoints at = frf_points(sc, m, sys);

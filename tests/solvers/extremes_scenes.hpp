@@ -17,7 +17,7 @@ inline const Registry& registry() {
 inline Result run(const std::string& backend, const Scene& s, const std::string& mesh = "") {
   const Solver& solver = registry().get(backend);
   Options o = testing::own_error_study();
-  return solver.solve(s, mesh.empty() ? solver.default_mesh(s) : Discretization::parse(mesh), o);
+  return solver.solve(s, mesh.empty() ? testing::default_mesh(solver, s) : Discretization::parse(mesh), o);
 }
 
 inline Support springs(double t, double r) {

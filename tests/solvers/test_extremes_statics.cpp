@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "extremes_scenes.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::extremes;
@@ -329,7 +330,7 @@ BOOST_AUTO_TEST_CASE(elongated_plates_converge_or_say_they_did_not) {
   for (const char* b : {"rfem", "dtfm"}) {
     BOOST_TEST_CONTEXT(b) {
       const Solver& sv = registry().get(b);
-      const Result r = sv.solve(s, sv.default_mesh(s), testing::as_without_mesh());
+      const Result r = sv.solve(s, testing::default_mesh(sv, s), testing::as_without_mesh());
       BOOST_REQUIRE(r.frequencies_rad_s.size() == 8u);
       double worst = 0;
       for (std::size_t i = 0; i < 8; ++i)

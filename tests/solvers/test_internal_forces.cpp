@@ -20,6 +20,7 @@
 
 #include "modalbench/equilibrium.hpp"
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -172,7 +173,7 @@ BOOST_AUTO_TEST_CASE(rfem_reactions_balance_and_resultants_within_the_estimate) 
       const Solver& rfem = registry().get("rfem");
       Options o;
       o.refine_to_tolerance = true;  // as the command line does with its default mesh
-      const Result rf = rfem.solve(s, rfem.default_mesh(s), o);
+      const Result rf = rfem.solve(s, testing::default_mesh(rfem, s), o);
       BOOST_TEST_CONTEXT(theory << ", " << sup << ": " << rf.summary.message) {
         BOOST_REQUIRE(rf.summary.status == Status::Success);
         BOOST_REQUIRE_EQUAL(rf.reactions.size(), ex.reactions.size());

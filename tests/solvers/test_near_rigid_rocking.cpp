@@ -12,6 +12,7 @@
 #include <string>
 
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -45,7 +46,7 @@ modes = 8
     for (const std::string name : {"exact", "rfem", "dtfm", "difference_eq"}) {
       if (physics == "spatial" && name == "difference_eq") continue;
       const Solver& b = registry().get(name);
-      const Result r = b.solve(s, b.default_mesh(s), Options{});
+      const Result r = b.solve(s, testing::default_mesh(b, s), Options{});
       BOOST_TEST_CONTEXT(physics << ", " << name << ": " << r.summary.message) {
         BOOST_TEST_REQUIRE((r.summary.status == Status::Success));
         // The rocking mode: in bending after the rotation about the spring; in space one per plane,

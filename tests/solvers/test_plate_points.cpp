@@ -17,7 +17,7 @@
 #include <string>
 
 #include "modalbench/exact/plates.hpp"
-#include "../common/solve_options.hpp"
+#include "solve_options.hpp"
 #include "solver_tests.hpp"
 
 using namespace modalbench;
@@ -36,7 +36,7 @@ Result rfem_default(const Scene& s) {
   const Solver& rfem = registry().get("rfem");
   Options o;
   o.refine_to_tolerance = true;  // as the command line does with its default mesh
-  return rfem.solve(s, rfem.default_mesh(s), o);
+  return rfem.solve(s, testing::default_mesh(rfem, s), o);
 }
 
 }  // namespace
@@ -154,7 +154,7 @@ BOOST_AUTO_TEST_CASE(plate_points_parse_and_exact_refuses) {
   BOOST_TEST(s.masses[0].y == 0.4);
   for (const std::string name : {"exact"}) {
     const Solver& b = registry().get(name);
-    const Result r = b.solve(s, b.default_mesh(s), Options{});
+    const Result r = b.solve(s, testing::default_mesh(b, s), Options{});
     BOOST_TEST_CONTEXT(name << ": " << r.summary.message) {
       BOOST_TEST((r.summary.status == Status::Unsupported));
       BOOST_TEST(r.summary.message.find("points") != std::string::npos);

@@ -14,7 +14,7 @@
 #include <map>
 #include <string>
 
-#include "../common/solve_options.hpp"
+#include "solve_options.hpp"
 #include "solver_tests.hpp"
 
 using namespace modalbench;

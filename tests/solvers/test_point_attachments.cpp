@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -218,7 +219,7 @@ BOOST_AUTO_TEST_CASE(a_support_next_to_an_end_is_its_own_element) {
   const Solver& rfem = registry().get("rfem");
   Options o;
   o.refine_to_tolerance = true;  // as the command line does with its default mesh
-  const Result rf = rfem.solve(s, rfem.default_mesh(s), o);
+  const Result rf = rfem.solve(s, testing::default_mesh(rfem, s), o);
   BOOST_TEST_CONTEXT("rfem: " << rf.summary.message) {
     BOOST_REQUIRE(rf.summary.status == Status::Success);
     for (std::size_t i = 0; i < 3; ++i)

@@ -9,6 +9,7 @@
 
 #include "modalbench/json_output.hpp"
 #include "modalbench/registry.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 
@@ -29,7 +30,7 @@ BOOST_AUTO_TEST_CASE(every_backend_honours_every_field) {
   int runs = 0;
   for (const Scene& sc : builtin_scenes())
     for (const Solver* s : reg.all()) {
-      const Result r = s->solve(sc, s->default_mesh(sc), Options{});
+      const Result r = s->solve(sc, testing::default_mesh(*s, sc), Options{});
       const Summary& m = r.summary;
       BOOST_TEST_CONTEXT(s->name() << " on " << sc.name << " (" << to_string(m.status) << ": " << m.message << ")") {
         ++runs;
@@ -61,7 +62,7 @@ BOOST_AUTO_TEST_CASE(every_backend_honours_every_field) {
         for (std::size_t i = 1; i < r.frequencies_rad_s.size(); ++i)
           BOOST_TEST(r.frequencies_rad_s[i] >= r.frequencies_rad_s[i - 1]);
         // JSON carries each field under its one name.
-        const auto j = to_json(sc, s->name(), s->default_mesh(sc), r);
+        const auto j = to_json(sc, s->name(), testing::default_mesh(*s, sc), r);
         for (const char* key : {"unknowns", "threads", "max_backward_error", "diagnostics", "timing_s"})
           BOOST_TEST(j.contains(key), key);
         for (const char* key : {"requested", "used", "fallbacks", "converges_to_scene_theory"})
@@ -97,13 +98,13 @@ BOOST_AUTO_TEST_CASE(backend_options_are_validated_with_file_key_and_reason) {
       // equals the solve with none.
       Options o;
       for (const auto& spec : s->option_specs()) o.backend.emplace_back(spec.key, spec.default_value);
-      const Result a = s->solve(sc, s->default_mesh(sc), o), b = s->solve(sc, s->default_mesh(sc), Options{});
+      const Result a = s->solve(sc, testing::default_mesh(*s, sc), o), b = s->solve(sc, testing::default_mesh(*s, sc), Options{});
       BOOST_TEST((a.summary.status == b.summary.status));
       BOOST_TEST(a.frequencies_rad_s == b.frequencies_rad_s);
       // An unknown key in the scene: file, dotted key, reason.
       Scene bad = sc;
       bad.backend_options[s->name()] = {{"no_such_option", "1"}};
-      const Result r = s->solve(bad, s->default_mesh(bad), Options{});
+      const Result r = s->solve(bad, testing::default_mesh(*s, bad), Options{});
       BOOST_TEST((r.summary.status == Status::InvalidInput));
       BOOST_TEST(r.summary.message.find(sc.source + ": backend." + s->name() + ".no_such_option: unknown option") !=
                  std::string::npos);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -32,7 +33,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 Result solve(const std::string& backend, const Scene& s) {
   const Solver& b = registry().get(backend);
-  Result r = b.solve(s, b.default_mesh(s), Options{});
+  Result r = b.solve(s, testing::default_mesh(b, s), Options{});
   BOOST_TEST_INFO(backend << ": " << r.summary.message);
   BOOST_TEST(r.ok());
   BOOST_TEST_REQUIRE(r.campbell.points.size() == s.rotor->spin.size());
@@ -196,7 +197,7 @@ BOOST_AUTO_TEST_CASE(an_asymmetric_shaft_in_its_rotating_frame_is_unstable_betwe
   auto plane = [&](int n, double I) { return std::pow(n * kPi / L, 2) * std::sqrt(E * I / (rho * A)); };
   for (const std::string backend : {"exact", "rfem", "difference_eq"}) {
     const Solver& bk = registry().get(backend);
-    const Result r = bk.solve(s, bk.default_mesh(s), Options{});
+    const Result r = bk.solve(s, testing::default_mesh(bk, s), Options{});
     BOOST_TEST_INFO(backend << ": " << r.summary.message);
     BOOST_TEST(r.ok());
     const double tol = allowed(backend, r);
@@ -271,7 +272,7 @@ modes = 2
   // consistent mass's.)
   for (const std::string backend : {"exact", "rfem", "dtfm"}) {
     const Solver& b = registry().get(backend);
-    const Result r = b.solve(s, b.default_mesh(s), Options{});
+    const Result r = b.solve(s, testing::default_mesh(b, s), Options{});
     BOOST_TEST_INFO(backend << ": " << r.summary.message);
     BOOST_TEST(r.campbell.empty());
     const bool said = std::any_of(r.summary.warnings.begin(), r.summary.warnings.end(), [](const std::string& w) {
@@ -280,12 +281,12 @@ modes = 2
     BOOST_TEST((r.summary.status == Status::Unsupported || said));
   }
   const Solver& de = registry().get("difference_eq");
-  const Result chain = de.solve(s, de.default_mesh(s), Options{});
+  const Result chain = de.solve(s, testing::default_mesh(de, s), Options{});
   BOOST_TEST(!chain.campbell.empty());
   BOOST_TEST(!chain.summary.converges_to_scene_theory);
   Options lumped;
   lumped.mass = MassModel::Lumped;
-  const Result l = de.solve(s, de.default_mesh(s), lumped);
+  const Result l = de.solve(s, testing::default_mesh(de, s), lumped);
   BOOST_TEST(l.campbell.empty());
   BOOST_TEST((l.summary.status == Status::Unsupported), l.summary.message);
 }
@@ -348,7 +349,7 @@ BOOST_AUTO_TEST_CASE(the_lateral_model_at_rest_bends_in_both_planes_as_the_close
   std::sort(ref.begin(), ref.end());
   for (const std::string backend : {"exact", "dtfm"}) {
     const Solver& bk = registry().get(backend);
-    const Result r = bk.solve(s, bk.default_mesh(s), Options{});
+    const Result r = bk.solve(s, testing::default_mesh(bk, s), Options{});
     BOOST_TEST_INFO(backend << ": " << r.summary.message);
     BOOST_TEST(r.ok());
     BOOST_TEST_REQUIRE(r.frequencies_rad_s.size() == 6u);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -112,7 +113,7 @@ BOOST_AUTO_TEST_CASE(difference_eq_bending_within_its_estimate) {
   const auto ref = closed_form_spatial();  // bending-only: every other entry of the pairs
   const Scene s = shaft("bending", "euler-bernoulli", 3);
   const Solver& de = registry().get("difference_eq");
-  const Result r = de.solve(s, de.default_mesh(s), Options{});
+  const Result r = de.solve(s, testing::default_mesh(de, s), Options{});
   BOOST_REQUIRE(r.summary.status == Status::Success);
   for (std::size_t i = 0; i < 3; ++i)
     BOOST_TEST(rel(r.frequencies_rad_s[i], ref[2 * i]) <= r.summary.error_estimate.frequencies + 1e-10);
@@ -121,7 +122,7 @@ BOOST_AUTO_TEST_CASE(difference_eq_bending_within_its_estimate) {
 BOOST_AUTO_TEST_CASE(dtfm_cuts_only_rectangles) {
   const Scene s = shaft("spatial", "euler-bernoulli", 3);
   const Solver& dt = registry().get("dtfm");
-  BOOST_TEST(dt.default_mesh(s).spec() == "1x1");
+  BOOST_TEST(testing::default_mesh(dt, s).spec() == "1x1");
   const Result r = dt.solve(s, Discretization::parse("2x2"), Options{});
   BOOST_TEST((r.summary.status == Status::InvalidInput));
   BOOST_TEST(r.summary.message.find("only rectangular sections") != std::string::npos, r.summary.message);

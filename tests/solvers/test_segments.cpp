@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -163,7 +164,7 @@ BOOST_AUTO_TEST_CASE(stepped_cantilever_tip_load) {
   BOOST_REQUIRE_EQUAL(ex.deflections.size(), 1u);
   BOOST_TEST(rel(ex.deflections[0].w, w) < 1e-9);
   BOOST_TEST(rel(ex.deflections[0].theta_y, -slope) < 1e-9);  // theta_y = -phi
-  const Result rf = registry().get("rfem").solve(s, registry().get("rfem").default_mesh(s), Options{});
+  const Result rf = registry().get("rfem").solve(s, testing::default_mesh(registry().get("rfem"), s), Options{});
   BOOST_TEST_CONTEXT("rfem " << rf.summary.mesh << ": " << rf.summary.message) {
     BOOST_REQUIRE(rf.summary.status == Status::Success);
     BOOST_TEST(std::abs(rf.deflections[0].w / w - 1) <= rf.summary.error_estimate.deflections);
@@ -195,7 +196,7 @@ BOOST_AUTO_TEST_CASE(stepped_beam_with_mass_against_hermite_elements) {
     BOOST_TEST(rel(ex.frequencies_rad_s[i], r2) <= bound);
     BOOST_TEST(bound < 1e-6);  // the reference is sharp enough to test against
   }
-  const Result rf = registry().get("rfem").solve(s, registry().get("rfem").default_mesh(s), Options{});
+  const Result rf = registry().get("rfem").solve(s, testing::default_mesh(registry().get("rfem"), s), Options{});
   BOOST_TEST_CONTEXT("rfem " << rf.summary.mesh << ": " << rf.summary.message) {
     BOOST_REQUIRE(rf.summary.status == Status::Success);
     for (int i = 0; i < k; ++i)

@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "solver_tests.hpp"
+#include "solve_options.hpp"
 
 using namespace modalbench;
 using namespace modalbench::solver_tests;
@@ -71,7 +72,7 @@ Result solve(const std::string& text, const std::string& backend, const std::str
   const Solver& solver = registry().get(backend);
   Options opt;
   opt.estimate_error = false;
-  return solver.solve(s, mesh.empty() ? solver.default_mesh(s) : Discretization::parse(mesh), opt);
+  return solver.solve(s, mesh.empty() ? testing::default_mesh(solver, s) : Discretization::parse(mesh), opt);
 }
 
 }  // namespace
@@ -135,7 +136,7 @@ static_correction = false)";
   const Scene s = parse_scene(steel_plate(patch, request), "plate.toml");
   Options opt;
   opt.estimate_error = false;
-  const Result r = registry().get("exact").solve(s, registry().get("exact").default_mesh(s), opt);
+  const Result r = registry().get("exact").solve(s, testing::default_mesh(registry().get("exact"), s), opt);
   BOOST_TEST_REQUIRE(r.ok(), r.summary.message);
   const Transient& t = r.transient;
   BOOST_TEST(!t.static_correction);

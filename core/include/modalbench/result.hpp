@@ -252,6 +252,13 @@ struct Campbell {
   bool empty() const { return points.empty(); }
 };
 
+/// One step of a solve (a kernel of the back-end: Kernels) and how it ended.
+struct StepOutcome {
+  std::string step;  ///< modes | shapes | statics | frf | campbell
+  Status status = Status::Success;
+  std::string message;  ///< what it raised, joined by "; " (empty on success)
+};
+
 struct Summary {
   Status status = Status::Success;
   /// Every message raised, in order, joined by "; " (empty on success).
@@ -291,6 +298,9 @@ struct Summary {
   /// The mesh actually solved ("-" for none).
   std::string mesh;
   std::vector<std::string> warnings;
+  /// The back-end's kernels run on the mesh kept, in order, each with its own status and message
+  /// (the status above is the worst of theirs and of the pipeline's own checks).
+  std::vector<StepOutcome> steps;
   double total_time_s = 0;
 
   /// Records a problem: the status becomes the worse of the current one and `s`; the message is kept.

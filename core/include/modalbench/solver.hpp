@@ -5,9 +5,10 @@
 //   Registry registry = ...;                      // see solvers/registry.hpp
 //   const Solver& s = registry.get("exact");      // unknown names list the known ones
 //   Scene scene = load_scene("scenes/paper_fixed_beam.toml");
-//   Result r = s.solve(scene, s.default_mesh(scene), Options{});
+//   Result r = s.solve_default(scene, Options{});          // or s.solve(scene, mesh, options)
 //   if (!r.ok()) std::cerr << r.summary.message;
 
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "modalbench/kernels.hpp"
 #include "modalbench/result.hpp"
 #include "modalbench/scene.hpp"
 
@@ -83,8 +85,8 @@ struct Options {
   /// study (the comparison's timed runs).
   bool estimate_error = true;
   /// The mesh is the back-end's default (no --mesh given): while the error estimate exceeds the
-  /// scene's request.tolerance, refine it (at most 3 times, each within the limits above) and
-  /// report the first mesh that meets it, or the finest tried.
+  /// scene's request.tolerance, refine it (at most MeshFamily::refinement_steps times, each within
+  /// the limits above) and report the first mesh that meets it, or the finest tried.
   bool refine_to_tolerance = false;
   /// Back-end options from the command line (key -> value text), over the scene's [backend.NAME].
   std::vector<std::pair<std::string, std::string>> backend;
@@ -113,6 +115,39 @@ struct CoarserMesh {
   double next_order = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// A back-end's meshes for one scene, described once (Solver::meshes) and driven by core and the
+/// harness: the default path starts from `default_mesh` and refines it by `finer` (at most
+/// `refinement_steps` times) towards the tolerance; a result's error estimate solves the `coarser`
+/// meshes; the comparison runs the `ladder`; the stability sweep `theory` and `stress`. A method
+/// without a mesh (`exact`) has the empty mesh everywhere and neither coarser nor finer meshes.
+struct MeshFamily {
+  Discretization default_mesh;             ///< the mesh used when none is given
+  std::vector<Discretization> ladder;      ///< coarse to fine, for convergence studies (each valid for the scene)
+  /// The mesh on which the back-end's model is the scene's own theory (the Euler-Bernoulli or
+  /// Timoshenko beam, the Kirchhoff or Mindlin plate), for sweeps that judge it against the exact
+  /// solution of that theory; nullopt where no mesh is (an Euler-Bernoulli chain on a Timoshenko
+  /// scene: that is model error, not stability).
+  std::optional<Discretization> theory;
+  std::vector<Discretization> stress;      ///< the largest meshes worth trying in the stability sweep
+  /// The most refinement steps the default path takes (a family that refines by small, graded
+  /// steps takes more of them).
+  int refinement_steps = 3;
+  /// The order at which the frequencies converge, for a check against a finer mesh where a mesh
+  /// has no coarser one.
+  double order = 2.0;
+  /// The coarser mesh a result on a mesh is checked against (nullopt: none, or the method is exact
+  /// for its model); empty: the family has none.
+  std::function<std::optional<CoarserMesh>(const Discretization&)> coarser;
+  /// A mesh of the family about `factor` (> 1) times finer in each direction, or the next of a
+  /// graded sequence (nullopt: none); empty: the family has none.
+  std::function<std::optional<Discretization>(const Discretization&, double factor)> finer;
+
+  std::optional<CoarserMesh> coarser_than(const Discretization& mesh) const;
+  std::optional<Discretization> finer_than(const Discretization& mesh, double factor) const;
+  /// One mesh for every purpose, without coarser or finer ones (a method without a mesh: the empty one).
+  static MeshFamily single(const Discretization& mesh);
+};
+
 /// 80 % of the memory this process may use (physical memory, RLIMIT_AS, RLIMIT_DATA), bytes.
 double default_memory_limit();
 
@@ -129,9 +164,11 @@ struct Capability {
   bool any() const { return modes || statics || frf || campbell; }
 };
 
+class Solver;
 namespace detail {
 class SolvePipeline;
-}
+void run_kernels(const Solver&, const Scene&, const Discretization&, const Options&, Result&, std::string*);
+}  // namespace detail
 
 class Solver {
  public:
@@ -140,52 +177,37 @@ class Solver {
   /// One line: what model this back-end solves.
   virtual std::string description() const = 0;
   virtual Capability supports(const Scene& scene) const = 0;
-  /// The mesh used when none is given.
-  virtual Discretization default_mesh(const Scene& scene) const = 0;
-  /// Meshes from coarse to fine for convergence studies (each should be valid for the scene).
-  virtual std::vector<Discretization> mesh_ladder(const Scene& scene) const { return {default_mesh(scene)}; }
+  /// The back-end's meshes for the scene (MeshFamily). `options`: the mass model and the back-end
+  /// options where the family's orders depend on them.
+  virtual MeshFamily meshes(const Scene& scene, const Options& options) const = 0;
   /// The back-end's options (scene table [backend.NAME], command line --option KEY=VALUE).
   virtual std::vector<OptionSpec> option_specs() const { return {}; }
-  /// The mesh on which this back-end's model is the scene's own theory (the Euler-Bernoulli or
-  /// Timoshenko beam, the Kirchhoff or Mindlin plate), for sweeps that judge it against the exact
-  /// solution of that theory; nullopt where no mesh is (an Euler-Bernoulli chain on a Timoshenko
-  /// scene: that is model error, not stability). Default: the default mesh.
-  virtual std::optional<Discretization> theory_mesh(const Scene& scene) const { return default_mesh(scene); }
-  /// The largest meshes worth trying in the stability sweep (default: the finest of the ladder).
-  virtual std::vector<Discretization> stress_meshes(const Scene& scene) const { return {mesh_ladder(scene).back()}; }
   /// Peak memory and time the request (scene, mesh) is estimated to need. May throw InputError
   /// for a mesh the back-end rejects. Default: nothing worth estimating.
   virtual ResourceEstimate estimate(const Scene&, const Discretization&, const Options&) const { return {}; }
-  /// The coarser mesh a result on `mesh` is checked against (nullopt: no mesh, the method is exact
-  /// for its model, or no coarser mesh of the family exists).
-  virtual std::optional<CoarserMesh> coarser_mesh(const Scene&, const Discretization&, const Options&) const {
-    return std::nullopt;
-  }
-  /// The order at which the frequencies of this back-end's meshes converge (for a check against a
-  /// finer mesh when there is no coarser one).
-  virtual double mesh_order(const Scene&, const Options&) const { return 2.0; }
-  /// A mesh of the same family about `factor` (> 1) times finer in each direction (nullopt: none).
-  virtual std::optional<Discretization> finer_mesh(const Scene&, const Discretization&, double /*factor*/) const {
-    return std::nullopt;
-  }
-  /// The most refinement steps the default path takes towards the tolerance (finer_mesh's steps:
-  /// a family that refines by small steps takes more of them).
-  virtual int refinement_steps(const Scene&) const { return 3; }
 
   /// Validates the scene and the options, estimates the cost (refused above options' limits),
-  /// times, and fills the summary; then calls the back-end, and, for a meshed result, solves the
-  /// coarser mesh to estimate its discretization error (Summary::error_estimate). Never throws for numerical trouble or unsupported requests: those come back in
-  /// `summary.status`. Invalid input (bad mesh or option for this back-end, a scene that fails
-  /// validation) comes back as Status::InvalidInput with the file, key and reason.
+  /// times, and fills the summary; then runs the back-end's kernels (Kernels) for what the scene
+  /// asks, and, for a meshed result, solves the coarser meshes to estimate its discretization
+  /// error (Summary::error_estimate). Never throws for numerical trouble or unsupported requests:
+  /// those come back in `summary.status`. Invalid input (bad mesh or option for this back-end, a
+  /// scene that fails validation) comes back as Status::InvalidInput with the file, key and reason.
   Result solve(const Scene& scene, const Discretization& mesh, const Options& options) const;
+  /// The default path: the family's default mesh, refined to the scene's tolerance
+  /// (Options::refine_to_tolerance set), as `modalbench solve` without --mesh.
+  Result solve_default(const Scene& scene, Options options) const;
 
  protected:
-  friend class detail::SolvePipeline;  // solve()'s steps call do_solve
-  /// The back-end's work (options.resolved is filled). May throw InputError for a bad
-  /// discretization; std::bad_alloc becomes Status::ResourceLimit, any other exception
-  /// Status::NumericalIssue with its message.
-  virtual void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
-                        Result& result) const = 0;
+  // solve()'s steps build the model and run its kernels.
+  friend class detail::SolvePipeline;
+  friend void detail::run_kernels(const Solver&, const Scene&, const Discretization&, const Options&, Result&,
+                                  std::string*);
+  /// The back-end's model of `scene` on `mesh` (options.resolved is filled), with its kernels;
+  /// what the model is (Summary::model, method, unknowns, modelling notes) goes into `result`.
+  /// May throw InputError for a bad discretization; std::bad_alloc becomes Status::ResourceLimit,
+  /// any other exception Status::NumericalIssue with its message.
+  virtual std::unique_ptr<Kernels> build(const Scene& scene, const Discretization& mesh, const Options& options,
+                                         Result& result) const = 0;
 };
 
 /// The only place that knows every back-end by name.

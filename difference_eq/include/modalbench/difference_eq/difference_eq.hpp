@@ -22,7 +22,7 @@
 // result says so); loads on nodes; no FRF.
 //
 // Source: M. Lasecka, seed lasecka-difference-equation-beam-pl.txt, Eqs. (1)-(24); errata in
-// lasecka.hpp and shared/ERRATA.md.
+// lasecka.hpp and docs/sources.md (L1, L2).
 //
 // Usage:
 //   modalbench::difference_eq::DifferenceEqSolver s;
@@ -33,6 +33,7 @@
 //   StaticSolution st = solve_static(b, {{R / 2, -1e3, 0.0}});
 //   Spectrum sp = natural_frequencies(b, MassModel::Consistent, 100);
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -62,37 +63,21 @@ class DifferenceEqSolver final : public Solver {
     return "closed-form regular discrete Euler-Bernoulli beam (Hermite elements, difference equations)";
   }
   Capability supports(const Scene& scene) const override;
-  /// The smallest multiple of every load's and probe's denominator (in units of L) with
-  /// R >= max(32, 8 modes); falls back to 64 when the positions are not commensurate.
-  Discretization default_mesh(const Scene& scene) const override;
-  /// The default mesh on Euler-Bernoulli beams in bending (x-z); nullopt otherwise (model error).
-  std::optional<Discretization> theory_mesh(const Scene& scene) const override {
-    if (!scene.is_beam() || scene.theory != Theory::EulerBernoulli || scene.physics != Physics::Bending)
-      return std::nullopt;
-    return default_mesh(scene);
-  }
-  /// R = base, 2 base, 4 base, ... from >= 4 up to <= 4096 (base puts loads and probes on nodes).
-  std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
-  /// The stability sweep's largest meshes: the ladder's top and the largest multiple of the
-  /// load/probe grid not above R = 10^6 (the closed forms are O(R) in statics, O(1) per mode).
-  std::vector<Discretization> stress_meshes(const Scene& scene) const override;
+  /// Default: the smallest multiple of every load's and probe's denominator (in units of L) with
+  /// R >= max(32, 8 modes) (64 when the positions are not commensurate); ladder R = base ... 4096;
+  /// theory mesh on Euler-Bernoulli beams in bending only (elsewhere model error); stress meshes
+  /// the ladder's top and the largest grid multiple up to 10^6; coarser R/2 where loads stay on
+  /// nodes (order 4 with consistent mass, 2 lumped); finer R times the factor.
+  MeshFamily meshes(const Scene& scene, const Options& options) const override;
   /// static_method, residual_check_max_R (defaults from the Config the solver was built with).
   std::vector<OptionSpec> option_specs() const override;
-  /// The coarser mesh of the self-check (halved counts, order 2; order 4 with consistent mass, R/2 only when loads and probes stay on nodes).
-  std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
-                                          const Options& options) const override;
-  /// 4 with the consistent mass, 2 with the lumped one (Hermite cubic eigenvalues).
-  double mesh_order(const Scene&, const Options& options) const override {
-    return options.mass == MassModel::Consistent ? 4.0 : 2.0;
-  }
-  /// The default mesh refined towards the tolerance (counts times factor).
-  std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
   /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
   ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
  protected:
-  void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
-                Result& result) const override;
+  /// The regular chain with its loads on nodes, and its kernels (difference_eq_kernels.cpp).
+  std::unique_ptr<Kernels> build(const Scene& scene, const Discretization& mesh, const Options& options,
+                                 Result& result) const override;
 
  public:
   /// Mode shapes at the scene's sample points for the reported frequencies (the first `rigid`

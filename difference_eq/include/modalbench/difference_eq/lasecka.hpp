@@ -16,8 +16,8 @@
 //    frequencies, Omega = 12 alpha^2; see vibration.hpp) and polished on this equation.
 //  * W_{r,k}, Phi_{r,k} as printed, evaluated in an algebraically identical form divided by
 //    cosh(mu R) (the printed form cancels e^{mu R}-sized terms), normalised so that
-//    sum_r W_{r,k} W_{r,j} = delta_kj (ERRATA 2; Phi with the same factor).
-//  * Expansion (7) (sum to R-1, ERRATA 1), reactions (19), reactions of the elastic supports
+//    sum_r W_{r,k} W_{r,j} = delta_kj (docs/sources.md, L2; Phi with the same factor).
+//  * Expansion (7) (sum to R-1, L1), reactions (19), reactions of the elastic supports
 //    (21), settlements (22) -- erratum (found here): in the printed v0 the term
 //    3 K_R (V_R^(P) - f_0^(P)/R) must read 3 K_R (V_0^(P) - f_0^(P)/R), and in vR the term
 //    3 K_0 (V_0^(P) + f_0^(P)/R) must read 3 K_0 (V_R^(P) + f_0^(P)/R) (both follow from (21)

@@ -1,7 +1,7 @@
 #pragma once
 // The `dtfm` back-end: hybrid discrete-continuous prisms solved by distributed transfer
 // functions (Hein, "A discrete-continuous method of mechanical system modelling"; seed
-// hein-discrete-continuous-prism-dtfm.txt, with shared/ERRATA.md).
+// with the corrections P1-P8 of docs/sources.md).
 //
 // Model (prism_model.hpp). The body is cut in two directions only: a beam's section into
 // NY x NZ rectangular prisms, a plate into N strips across its width; each prism is continuous
@@ -11,7 +11,7 @@
 // motion of their faces (rigid_kinematics.hpp); supports along a plate's long edges act on the
 // edge strips; ends are clamped / pinned / free / springs per DOF (beams: through a rigid end
 // plate). The result is Eq. (32), A02 q_tt + A20 q'' + A10 q' + A00 q = f, with A02, A20, A00
-// symmetric and A10 skew, derived from the energy rather than transcribed (ERRATA 6).
+// symmetric and A10 skew, derived from the energy rather than transcribed (P6).
 //
 // Solution (analysis.hpp). Laplace/harmonic form y' = A(omega^2) y in the Hamiltonian state
 // y = [q; f] (equivalent to Eq. (42), eta = [q; q'], but symmetric). The paper's closed form
@@ -33,6 +33,7 @@
 //   // r.frequencies_rad_s, r.mode_families, r.deflections, r.frf, r.summary; with
 //   // [request] shapes: r.mode_shapes (mass-normalized, LineAnalysis::mode_shapes)
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,32 +52,25 @@ class DtfmSolver final : public Solver {
            "(segment dynamic stiffness, Wittrick-Williams count)";
   }
   Capability supports(const Scene& scene) const override;
-  /// Beam: "2x2" (the paper's four prisms); plate: "10" strips.
-  Discretization default_mesh(const Scene& scene) const override;
-  /// Beam: one prism (the scene's beam theory itself); plate: the default strips.
-  std::optional<Discretization> theory_mesh(const Scene& scene) const override;
-  /// Beam: 1x1, 2x2, 4x4, 8x8 (spatial physics: up to 6x6); plate: 4, 7, 10, 20, 40 strips.
-  std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
-  std::vector<Discretization> stress_meshes(const Scene& scene) const override;
+  /// Beam: one prism by default (the scene's beam theory itself, no discretization error); a
+  /// section cut NY x NZ (ladder 1x1 ... 8x8, spatial up to 6x6) tends to 3D elasticity. Plate: N
+  /// strips, about 6 per half-wave across the width, the points on strip lines; ladder 4 ... 40;
+  /// coarser: halved counts (order 2; extrapolated at 4 where both strip ends are held); finer:
+  /// strips times the factor (meshes.cpp).
+  MeshFamily meshes(const Scene& scene, const Options& options) const override;
   /// layers, kirchhoff_penalty (defaults from the ModelOptions the solver was built with), rel_tol,
   /// im_h, re_h, family_threshold (SolveControls).
   std::vector<OptionSpec> option_specs() const override;
-  /// The coarser mesh of the self-check (halved counts, order 2; one-prism beams are exact for their model: none).
-  std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
-                                          const Options& options) const override;
-  /// The default mesh refined towards the tolerance (counts times factor).
-  std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
   /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
   ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
  protected:
-  void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
-                Result& result) const override;
+  /// The prism model and its line analysis, with its kernels (dtfm_kernels.cpp).
+  std::unique_ptr<Kernels> build(const Scene& scene, const Discretization& mesh, const Options& options,
+                                 Result& result) const override;
 
  private:
   ModelOptions options_;
-  /// Mass-normalized shapes of the modes `ml` (scene.request.shapes; src/dtfm_solver.cpp).
-  static ModeShapes shapes(const Scene& scene, LineAnalysis& la, const ModeList& ml);
 };
 
 }  // namespace modalbench::dtfm

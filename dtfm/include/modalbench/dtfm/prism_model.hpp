@@ -3,7 +3,7 @@
 // plate cut into strips across its width, each prism continuous along x, neighbours joined
 // by distributed spring layers. The operator of Eq. (32),
 //   A02 q'' (time) + A20 q'' + A10 q' + A00 q = f,
-// is built from an energy per unit length instead of the printed terms (ERRATA 6):
+// is built from an energy per unit length instead of the printed terms (docs/sources.md, P6):
 //   U = 1/2 e^T P e + e^T X q + 1/2 q^T Q1 q,   e = q' + S q,   T = 1/2 qdot^T M qdot,
 // e: the prisms' x-strains (u', v' - theta_z, w' + theta_y, theta_x', theta_y', theta_z'; a
 // plate strip: w' + theta_y, theta_x', theta_y'), P = C^-1 their stiffness (C = compliance,

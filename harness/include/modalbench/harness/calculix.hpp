@@ -1,6 +1,6 @@
 #pragma once
 // Optional external references by CalculiX: the scene's solid meshed with 20-node hexahedra with reduced
-// integration (C3D20R, what ERRATA 8 found the prism paper's ANSYS columns to be), solved by
+// integration (C3D20R, what docs/sources.md, P8, found the prism paper's ANSYS columns to be), solved by
 // CalculiX (`ccx`, Debian package calculix-ccx) for its lowest frequencies. Mode families are
 // read from the mode shapes (section-mean translations and twist per x-slice for beams;
 // mid-plane w against in-plane motion for plates), so 3D axial, torsion and other-plane

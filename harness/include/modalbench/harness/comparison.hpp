@@ -8,6 +8,8 @@
 // - model error: that converged limit against the best reference of the scene (3D elasticity from
 //   CalculiX bricks extrapolated over their ladder when they ran, else the exact theory).
 // Modes are paired with the scene's reference by MAC on sampled shapes (mode_matching.hpp).
+// `exact` and `dtfm` share the line system (numerics/line_system.hpp): their agreement is not an
+// independent check of that kernel; rfem and difference_eq share no kernel with them.
 //
 // Usage:
 //   CompareOptions opt;  opt.budget_s = 20;  opt.progress = &std::cerr;

@@ -1,6 +1,6 @@
 #pragma once
 // Published columns for the side-by-side tables of the report, keyed by scene name: the prism
-// paper (seeds/hein-…, with ERRATA.md applied) and the NAFEMS free-vibration benchmarks
+// paper (with its corrections, docs/sources.md) and the NAFEMS free-vibration benchmarks
 // (NAFEMS R0015: FV5, FV12, FV16, FV52).
 
 #include <string>

@@ -2,7 +2,7 @@
 // The stability sweep: slenderness L/h 0.5 ... 1e5 (Timoshenko and Euler-Bernoulli), each of the
 // four end springs alone from K = 1e-12 to 1e15 (and all four together), free and cantilever
 // plates, high modes (the 1000th of a beam, the 100th of a plate), each back-end's largest
-// meshes. Each back-end runs where its model is the scene's theory (Solver::theory_mesh), with its
+// meshes. Each back-end runs where its model is the scene's theory (MeshFamily::theory), with its
 // own error estimate; every run must return a finite, correctly counted, ordered result within
 // its own estimate of the exact one, or say why not (flagged, refused). Nothing wrong may pass
 // unflagged.
@@ -21,7 +21,7 @@ struct StabilityCase {
   std::string group;  ///< slenderness | springs | high-modes | plates | size
   std::string label;
   Scene scene;
-  bool stress_meshes = false;  ///< use each back-end's stress_meshes() instead of its default mesh
+  bool stress_meshes = false;  ///< use each back-end's stress meshes (MeshFamily::stress) instead of its default mesh
 };
 
 enum class Verdict { Ok, Refused, Flagged, UnflaggedBad };

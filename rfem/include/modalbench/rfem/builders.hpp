@@ -2,7 +2,7 @@
 // Builders: a Scene (or a box spec) -> an rfem Model.
 //
 // Beam (n segments of length d = L / n, the primary division). One SDE at each segment's middle
-// x = (j + 1/2) d with k = [EA, kGA, kGA, GJ, EI_y, EI_z] / d (DESIGN.md 1.1). The secondary
+// x = (j + 1/2) d with k = [EA, kGA, kGA, GJ, EI_y, EI_z] / d. The secondary
 // division cuts the beam at the SDEs: n + 1 RFEs centred at the nodes x = j d, interior ones of
 // length d, the two end ones of length d / 2 (mass rho A l; Jx = rho Ip l; Jy = m l^2/12 + rho Iy l
 // and Jz alike, the rho I l terms only for Timoshenko scenes). End supports are SDEs to ground at
@@ -18,8 +18,8 @@
 //    eigenvalues lose all accuracy near n = 10^4 in double precision. Kept as an independent
 //    second method for tests.
 //
-// Plate (nx x ny fragments of the primary division, Delta_l = a / nx, Delta_b = b / ny; seed
-// rfem-plate-appendix.txt with ERRATA.md): RFEs at the fragment corners, types 1-4 with full,
+// Plate (nx x ny fragments of the primary division, Delta_l = a / nx, Delta_b = b / ny; the plate
+// appendix with R1-R3 of docs/sources.md): RFEs at the fragment corners, types 1-4 with full,
 // half and quarter masses (Table A2.1); each fragment's stiffness goes into four SDEs along its
 // sides with the factor 1/2 of Table A1.1, an interior side collecting both fragments' halves.
 // Shear springs use the scene's multiplicative kappa (Table A1.1 divides by kappa = 1.2 = 1/(5/6)).

@@ -8,9 +8,9 @@
 //   FRF  (K (1 + i eta) + i w C - w^2 M) q = f,
 // with K = sum over SDEs of G' Rb k Rb' G, G = [-D_a, D_b], D(r) = [[I, -[r]x], [0, I]]
 // (core's rigid_kinematics.hpp), M = diag(m, m, m, Jx, Jy, Jz) per RFE. Rigid components are
-// exact: held DOFs are eliminated, rigid links between RFEs are constraints (DESIGN.md 1.1).
-// Sources: DESIGN.md 1.1; seeds/rfem-plate-appendix.txt Tables A1.1, A2.1 with ERRATA.md
-// (rfem-plate section). Builders and their modelling choices: builders.hpp; solves: analysis.hpp.
+// exact: held DOFs are eliminated, rigid links between RFEs are constraints.
+// Sources: the rigid-element plate appendix's Tables A1.1, A2.1 with the corrections R1-R3 of
+// docs/sources.md. Builders and their modelling choices: builders.hpp; solves: analysis.hpp.
 //
 // Meshes: beam "N" (segments of the primary division, N >= 1); plate "NXxNY" (fragments along
 // x and y, each >= 2). Probes interpolate the motion of the RFE centres around P (linear along a
@@ -26,6 +26,7 @@
 //   // r.frequencies_rad_s, r.mode_families, r.deflections, r.frf, r.summary (method, dofs,
 //   // max_residual, timings_s: assembly, factorization, eigen, statics, frf)
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,36 +50,28 @@ class RfemSolver final : public Solver {
     return "rigid finite element method (lumped): rigid elements joined by spring-damping elements";
   }
   Capability supports(const Scene& scene) const override;
-  Discretization default_mesh(const Scene& scene) const override;
-  std::vector<Discretization> mesh_ladder(const Scene& scene) const override;
-  /// Beams 10,000 and 100,000 segments; plates 100 fragments along the longer side.
-  std::vector<Discretization> stress_meshes(const Scene& scene) const override;
+  /// Beams: N segments, about 32 per half-wave of the highest requested mode, features on element
+  /// centres or cell boundaries; ladder N0 x 1..32; stress meshes 10,000 and 100,000 segments.
+  /// Plates: NX x NY, about 10 fragments per half-wave, multiples of 8; ladder up to 8 x 10
+  /// fragments; stress mesh 100 along the longer side. Coarser: halved counts (order 2, next 3);
+  /// finer: x factor, or a plate's graded steps x 1.5, x 4/3 (6 refinement steps) where no point
+  /// feature sits in its cells (meshes.cpp).
+  MeshFamily meshes(const Scene& scene, const Options& options) const override;
 
   /// eigen, dense_limit, tolerance, sturm_check, seed, frf_modes, beam_rigid_shear,
   /// plate_rigid_shear, plate_bending_correction (defaults and ranges in rfem.cpp).
   std::vector<OptionSpec> option_specs() const override;
-  /// The coarser mesh of the self-check (halved counts, order 2).
-  std::optional<CoarserMesh> coarser_mesh(const Scene& scene, const Discretization& mesh,
-                                          const Options& options) const override;
-  /// The default mesh refined towards the tolerance (counts times factor).
-  std::optional<Discretization> finer_mesh(const Scene& scene, const Discretization& mesh, double factor) const override;
-  int refinement_steps(const Scene& scene) const override;
   /// Peak memory and time of a request (fitted to measurements on a 2-core machine; see the .cpp).
   ResourceEstimate estimate(const Scene& scene, const Discretization& mesh, const Options& options) const override;
 
   /// The model for a scene and mesh (`options`: the builder options; null = defaults). Throws
   /// InputError (key "--mesh") for a bad mesh.
-  static Model build(const Scene& scene, const Discretization& mesh, const ResolvedOptions* options = nullptr);
+  static Model build_model(const Scene& scene, const Discretization& mesh, const ResolvedOptions* options = nullptr);
 
  protected:
-  void do_solve(const Scene& scene, const Discretization& mesh, const Options& options,
-                Result& result) const override;
-
- private:
-  static void solve_statics(const Scene& s, const Model& model, const System& sys, Result& r);
-  /// Fills r.frf; returns the method used. `modes`: modal superposition over them (null: direct).
-  static std::string solve_frf(const Scene& s, const Model& model, const System& sys, const Modes* modes,
-                               int frf_modes, const ResolvedOptions& options, Result& r);
+  /// The model assembled, with its kernels (rfem_kernels.cpp).
+  std::unique_ptr<Kernels> build(const Scene& scene, const Discretization& mesh, const Options& options,
+                                 Result& result) const override;
 };
 
 }  // namespace modalbench::rfem

@@ -1,7 +1,7 @@
 // The reduced-order state-space model of a scene (rom.hpp): a modal solve sampled at the inputs
 // and outputs, the static flexibility for D, and the full receptance for the H-infinity check,
 // each through the back-end's own Solver::solve.
-#include "modalbench/harness/rom.hpp"
+#include "modalbench/rom.hpp"
 
 #include <fmt/format.h>
 
@@ -254,9 +254,7 @@ StateSpaceModel export_rom(const Solver& solver, const Scene& scene, const std::
   sr.points = rq.inputs;
   sr.points.insert(sr.points.end(), rq.outputs.begin(), rq.outputs.end());
   modal.request.shapes = sr;
-  Options o;
-  o.refine_to_tolerance = !mesh;
-  const Result r = solver.solve(modal, mesh ? *mesh : solver.default_mesh(modal), o);
+  const Result r = mesh ? solver.solve(modal, *mesh, Options{}) : solver.solve_default(modal, Options{});
   m.mesh = r.summary.mesh;
   if (severity(r.summary.status) >= severity(Status::NumericalIssue) || r.mode_shapes.empty()) {
     m.status = severity(r.summary.status) >= severity(Status::NumericalIssue) ? r.summary.status : Status::Unsupported;

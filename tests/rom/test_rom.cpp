@@ -10,7 +10,7 @@
 #include <cmath>
 #include <complex>
 
-#include "modalbench/harness/rom.hpp"
+#include "modalbench/rom.hpp"
 #include "modalbench/registry.hpp"
 
 using namespace modalbench;
