@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "modalbench/rfem/factor.hpp"
@@ -110,34 +111,20 @@ FrfResult frf_direct(const Model& model, const System& sys, const Eigen::VectorX
   return out;
 }
 
-bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
-                   const std::vector<double>& omegas, const ProjectedFrfOptions& options, FrfResult& out) {
-  using Cplx = std::complex<double>;
-  if (sys.C.nonZeros() > 0 || omegas.empty()) return false;
-  const double w_max = *std::max_element(omegas.begin(), omegas.end());
-  if (!(w_max > 0) || !std::isfinite(w_max)) return false;
-  const auto t0 = Clock::now();
+namespace {
+
+/// The projected model the samples are evaluated from: Ritz pairs and their residuals' measure.
+struct Projection {
+  long p;                         ///< basis size
+  Eigen::VectorXd theta, pf, pg;  ///< Ritz values; the load's and the probe's components
+  Eigen::MatrixXd Gram, GramAbs;  ///< the residual pieces in the flexibility
+  double g_out;                   ///< the probe's part on the modes left out
+};
+
+/// The modes below sigma and up to four load-dependent Ritz vectors (ldlt: K - s M); none if empty.
+std::optional<Eigen::MatrixXd> ritz_basis(const System& sys, const KktLdlt& ldlt, const Eigen::VectorXd& f,
+                                          const Modes& modes, long below) {
   const long n = sys.n();
-  const double eta = model.loss_factor;
-  // How many modes lie below sigma = (2 w_max)^2: the inertia of K - sigma M (Sylvester).
-  const double sigma = 4.0 * w_max * w_max;
-  KktLdlt ldlt;
-  ldlt.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups);
-  if (!ldlt.factorize(SpMat(sys.K - sigma * sys.M))) return false;
-  const long below = ldlt.negative_count();
-  if (below < 0 || below > options.max_modes || below >= sys.n() - sys.m() - 4) return false;
-  Modes modes;
-  if (below > 0) {
-    ModeOptions mo = options.modes;
-    mo.modes = static_cast<int>(below);
-    modes = solve_modes(model, sys, mo);
-    if (!modes.converged || modes.lambda.size() != below) return false;
-    // Every mode kept must lie below sigma, or the count and the solve disagree.
-    if (modes.lambda[below - 1] >= sigma) return false;
-  }
-  // Load-dependent Ritz vectors: the quasi-static response of what the modes leave out.
-  const double shift = -0.25 * w_max * w_max;
-  if (!ldlt.factorize(SpMat(sys.K - shift * sys.M))) return false;
   constexpr int kRitz = 4;
   Eigen::MatrixXd V(n, below + kRitz);
   if (below > 0) V.leftCols(below) = modes.Z;
@@ -155,15 +142,23 @@ bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd&
     V.col(p++) = v / after;
   }
   V.conservativeResize(n, p);
-  if (p == 0 || !V.allFinite()) return false;
+  if (p == 0 || !V.allFinite()) return std::nullopt;
+  return V;
+}
+
+/// The Ritz pairs of the pencil projected onto V and their residuals' measure; none where they fail.
+std::optional<Projection> project(const System& sys, const KktLdlt& ldlt, const Eigen::MatrixXd& V,
+                                  const Eigen::VectorXd& f, const Eigen::VectorXd& g, const Modes& modes, long below,
+                                  double shift) {
+  const long n = sys.n(), p = V.cols();
   // Ritz pairs of the projected pencil (V' M V = I up to rounding: taken as a pencil anyway).
   const Eigen::MatrixXd KV = sys.K * V, MV = sys.M * V;
   Eigen::MatrixXd Kr = V.transpose() * KV, Mr = V.transpose() * MV;
   Kr = 0.5 * (Kr + Kr.transpose()).eval();
   Mr = 0.5 * (Mr + Mr.transpose()).eval();
-  if (!Kr.allFinite() || !Mr.allFinite() || Eigen::LLT<Eigen::MatrixXd>(Mr).info() != Eigen::Success) return false;
+  if (!Kr.allFinite() || !Mr.allFinite() || Eigen::LLT<Eigen::MatrixXd>(Mr).info() != Eigen::Success) return std::nullopt;
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);
-  if (es.info() != Eigen::Success || !es.eigenvalues().allFinite()) return false;
+  if (es.info() != Eigen::Success || !es.eigenvalues().allFinite()) return std::nullopt;
   const Eigen::VectorXd theta = es.eigenvalues();
   const Eigen::MatrixXd& Q = es.eigenvectors();  // Mr-orthonormal
   const Eigen::MatrixXd Y = V * Q;
@@ -186,8 +181,17 @@ bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd&
   }
   const double g_all = std::max(0.0, g.dot(ldlt.solve(g)));
   const double g_out = std::sqrt(std::max(g_all - g_in, 1e-14 * g_all));
-  out.factor_seconds += seconds_since(t0);
+  return Projection{p, theta, pf, pg, Gram, GramAbs, g_out};
+}
 
+/// The samples whose bound meets the target into out; returns the frequencies to solve directly.
+std::vector<double> projected_samples(const Projection& pr, double eta, double sigma, double shift,
+                                      const std::vector<double>& omegas, double target, FrfResult& out) {
+  using Cplx = std::complex<double>;
+  const long p = pr.p;
+  const Eigen::VectorXd &theta = pr.theta, &pf = pr.pf, &pg = pr.pg;
+  const Eigen::MatrixXd &Gram = pr.Gram, &GramAbs = pr.GramAbs;
+  const double g_out = pr.g_out;
   const Cplx one_eta(1.0, eta);
   Eigen::VectorXcd c(p + 1);
   std::vector<double> redo;
@@ -219,7 +223,7 @@ bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd&
     // <= (1 - s / sigma) / ((1 - w^2 / sigma) (lambda - s)); Cauchy-Schwarz in the weights 1 / (lambda - s).
     const double bound = (1.0 - shift / sigma) / (1.0 - w * w / sigma) * g_out * std::sqrt(r2);
     const double rel = bound / std::abs(h);
-    if (!(rel <= options.target) || !std::isfinite(std::abs(h))) {
+    if (!(rel <= target) || !std::isfinite(std::abs(h))) {
       redo.push_back(w);
       continue;
     }
@@ -229,36 +233,79 @@ bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd&
     out.error_bounds.push_back(rel);
   }
   out.max_error_bound = out.omega.empty() ? std::numeric_limits<double>::quiet_NaN() : worst;
-  if (!redo.empty()) {
-    const FrfResult d = frf_direct(model, sys, f, g, redo);
-    out.factor_seconds += d.factor_seconds;
-    out.skipped += d.skipped;
-    out.direct_samples = static_cast<long>(d.omega.size());
-    // Merge in frequency order.
-    struct Sample {
-      double w;
-      Cplx h;
-      double bound;
-    };
-    std::vector<Sample> all;
-    for (std::size_t i = 0; i < out.omega.size(); ++i) all.push_back({out.omega[i], out.receptance[i], out.error_bounds[i]});
-    for (std::size_t i = 0; i < d.omega.size(); ++i)
-      all.push_back({d.omega[i], d.receptance[i], std::numeric_limits<double>::quiet_NaN()});
-    std::stable_sort(all.begin(), all.end(), [](const Sample& a, const Sample& b) { return a.w < b.w; });
-    out.omega.clear();
-    out.receptance.clear();
-    out.error_bounds.clear();
-    for (const Sample& x : all) {
-      out.omega.push_back(x.w);
-      out.receptance.push_back(x.h);
-      out.error_bounds.push_back(x.bound);
-    }
+  return redo;
+}
+
+/// The samples at `redo` solved directly, merged with those in out in frequency order.
+void add_direct_samples(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
+                        const std::vector<double>& redo, FrfResult& out) {
+  using Cplx = std::complex<double>;
+  const FrfResult d = frf_direct(model, sys, f, g, redo);
+  out.factor_seconds += d.factor_seconds;
+  out.skipped += d.skipped;
+  out.direct_samples = static_cast<long>(d.omega.size());
+  // Merge in frequency order.
+  struct Sample {
+    double w;
+    Cplx h;
+    double bound;
+  };
+  std::vector<Sample> all;
+  for (std::size_t i = 0; i < out.omega.size(); ++i) all.push_back({out.omega[i], out.receptance[i], out.error_bounds[i]});
+  for (std::size_t i = 0; i < d.omega.size(); ++i)
+    all.push_back({d.omega[i], d.receptance[i], std::numeric_limits<double>::quiet_NaN()});
+  std::stable_sort(all.begin(), all.end(), [](const Sample& a, const Sample& b) { return a.w < b.w; });
+  out.omega.clear();
+  out.receptance.clear();
+  out.error_bounds.clear();
+  for (const Sample& x : all) {
+    out.omega.push_back(x.w);
+    out.receptance.push_back(x.h);
+    out.error_bounds.push_back(x.bound);
   }
+}
+
+}  // namespace
+
+bool frf_projected(const Model& model, const System& sys, const Eigen::VectorXd& f, const Eigen::VectorXd& g,
+                   const std::vector<double>& omegas, const ProjectedFrfOptions& options, FrfResult& out) {
+  if (sys.C.nonZeros() > 0 || omegas.empty()) return false;
+  const double w_max = *std::max_element(omegas.begin(), omegas.end());
+  if (!(w_max > 0) || !std::isfinite(w_max)) return false;
+  const auto t0 = Clock::now();
+  const double eta = model.loss_factor;
+  // How many modes lie below sigma = (2 w_max)^2: the inertia of K - sigma M (Sylvester).
+  const double sigma = 4.0 * w_max * w_max;
+  KktLdlt ldlt;
+  ldlt.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups);
+  if (!ldlt.factorize(SpMat(sys.K - sigma * sys.M))) return false;
+  const long below = ldlt.negative_count();
+  if (below < 0 || below > options.max_modes || below >= sys.n() - sys.m() - 4) return false;
+  Modes modes;
+  if (below > 0) {
+    ModeOptions mo = options.modes;
+    mo.modes = static_cast<int>(below);
+    modes = solve_modes(model, sys, mo);
+    if (!modes.converged || modes.lambda.size() != below) return false;
+    // Every mode kept must lie below sigma, or the count and the solve disagree.
+    if (modes.lambda[below - 1] >= sigma) return false;
+  }
+  // Load-dependent Ritz vectors: the quasi-static response of what the modes leave out.
+  const double shift = -0.25 * w_max * w_max;
+  if (!ldlt.factorize(SpMat(sys.K - shift * sys.M))) return false;
+  const std::optional<Eigen::MatrixXd> V = ritz_basis(sys, ldlt, f, modes, below);
+  if (!V) return false;
+  const std::optional<Projection> pr = project(sys, ldlt, *V, f, g, modes, below, shift);
+  if (!pr) return false;
+  out.factor_seconds += seconds_since(t0);
+
+  const std::vector<double> redo = projected_samples(*pr, eta, sigma, shift, omegas, options.target, out);
+  if (!redo.empty()) add_direct_samples(model, sys, f, g, redo, out);
   out.method = fmt::format(
       "projected (Galerkin) onto the {} modes below 2 w_max = {:.6g} rad/s (Sturm count) and {} load-dependent Ritz "
       "vectors, eta = {}; each sample's error bounded from its residual (largest bound {:.2g} of |H|, target {:.2g}); "
       "{} sample(s) solved directly where the bound missed the target",
-      below, 2.0 * w_max, p - below, eta, out.max_error_bound, options.target, out.direct_samples);
+      below, 2.0 * w_max, pr->p - below, eta, out.max_error_bound, options.target, out.direct_samples);
   return true;
 }
 

@@ -185,6 +185,205 @@ double pair_backward_error(const System& sys, const Flexible& flex) {
   return worst;
 }
 
+/// What the phases of one eigensolve share: the problem, its rigid modes, the counts and the result.
+struct ModeSolve {
+  const Model& model;
+  const System& sys;
+  const ModeOptions& opt;
+  const Eigen::MatrixXd& R;  ///< the free rigid modes
+  long n_eff, kf;            ///< the flexible space's dimension; the flexible pairs wanted
+  Modes& out;
+  std::string how;  ///< the method so far (out.method at the end)
+};
+
+/// The dense path: the flexible pairs, refined on the full coordinates when few are wanted.
+Flexible dense_modes(ModeSolve& ms) {
+  const System& sys = ms.sys;
+  Modes& out = ms.out;
+  const long kf = ms.kf;
+  const double sigma = choose_shift(ms.model, sys);
+  Flexible flex = dense_flexible(sys, ms.R, kf, sigma, ms.how);
+  // Two steps of subspace iteration with the sparse operator on the full coordinates, each
+  // closed by Rayleigh-Ritz: the reduced matrices of the dense path are formed through the
+  // constraint basis, which spreads the rounding of stiff supports over every coordinate;
+  // W' (K - sigma M) W = W' M Z needs no product with K, so the refined pairs do not inherit it
+  // (beam on 1e12 EI/L^3 springs, 128 segments: backward error 1e-7 -> 5e-9). Only when a
+  // small part of the spectrum is wanted: the complete spectral decomposition of the FRF would
+  // pay O(n^3) again for nothing.
+  if (3 * kf < ms.n_eff) {
+    try {
+      ShiftInvertOp op(sys, ms.R);
+      op.set_shift(sigma);
+      const int steps = refine_pairs(op, sys, sigma, flex);
+      out.factor_seconds += op.factor_seconds();
+      if (steps > 0)
+        ms.how += fmt::format("; refined by {} shift-invert subspace step(s) on the full coordinates ({})", steps,
+                              op.solver_name());
+      if (steps < 2)
+        out.warnings.push_back(fmt::format("dense eigenpairs refined by {} of 2 steps: a Rayleigh-Ritz step failed", steps));
+    } catch (const std::exception& e) {
+      out.warnings.push_back(fmt::format("dense eigenpairs not refined: {}", e.what()));
+    }
+  }
+  return flex;
+}
+
+/// What the Lanczos attempts share (the generator's draws go on from one attempt to the next).
+struct Lanczos {
+  ShiftInvertOp op;
+  Spectra::SparseSymMatProd<double> bop;
+  std::mt19937 rng;
+  std::uniform_real_distribution<double> uni;
+  double sigma;
+};
+
+/// The Sturm check's LDL', its symbolic analysis run on a second core while Lanczos iterates.
+struct SturmCheck {
+  KktLdlt ldlt;
+  bool analysed = false;
+  std::future<void> analysis;  ///< last: its destructor waits for the analysis before ldlt goes
+};
+
+/// One Lanczos run for nev pairs (subspace ncv) into flex; false, with a warning, where it fails.
+bool lanczos_attempt(ModeSolve& ms, Lanczos& lz, long nev, long ncv, Flexible& flex) {
+  const long n = ms.sys.n();
+  Modes& out = ms.out;
+  Spectra::SymGEigsShiftSolver<ShiftInvertOp, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
+      eigs(lz.op, lz.bop, nev, ncv, lz.sigma);
+  // Start in the flexible space: the operator maps onto {G z = 0, R' M z = 0}.
+  Eigen::VectorXd v0(n), s0(n);
+  for (long i = 0; i < n; ++i) v0[i] = lz.uni(lz.rng);
+  lz.op.perform_op(v0.data(), s0.data());
+  eigs.init(s0.data());
+  const long nconv = eigs.compute(Spectra::SortRule::LargestMagn, 1000, ms.opt.tolerance, Spectra::SortRule::SmallestAlge);
+  out.iterations += eigs.num_iterations();
+  flex.lambda = eigs.eigenvalues();
+  flex.Z = eigs.eigenvectors();
+  const bool ok = eigs.info() == Spectra::CompInfo::Successful && nconv >= nev;
+  ms.how = fmt::format(
+      "shift-invert Lanczos (Spectra SymGEigsShiftSolver, sigma = {:.6g} rad^2/s^2, nev = {}, ncv = {}, {}), {} of {} "
+      "converged in {} restarts, {} solves",
+      lz.sigma, nev, ncv, lz.op.solver_name(), nconv, nev, eigs.num_iterations(), lz.op.operations());
+  if (!ok) {
+    out.converged = false;
+    out.warnings.push_back(fmt::format("Lanczos did not converge: {} of {} eigenpairs (tolerance {:g})", nconv, nev,
+                                       ms.opt.tolerance));
+  }
+  return ok;
+}
+
+/// The Sturm check of the pairs found: true where Lanczos must rerun, with the larger nev it sets.
+bool sturm_asks_rerun(ModeSolve& ms, SturmCheck& sturm, const Flexible& flex, double sigma, int attempt, long& nev) {
+  const System& sys = ms.sys;
+  Modes& out = ms.out;
+  const long kf = ms.kf;
+  // Sturm count just above the kf-th eigenvalue.
+  const double mu = flex.lambda[kf - 1] * (1 + 1e-6) + 1e-12 * std::abs(sigma);
+  const auto t0 = Clock::now();
+  if (!sturm.analysed) {
+    sturm.analysis.get();  // rethrows what the analysis threw
+    sturm.analysed = true;
+  }
+  const bool fact = sturm.ldlt.factorize(SpMat(sys.K - mu * sys.M));
+  out.factor_seconds += seconds_since(t0);
+  if (!fact) {
+    out.warnings.push_back("Sturm count skipped: zero pivot at the check point");
+    return false;
+  }
+  const long count = sturm.ldlt.negative_count();
+  long found = ms.R.cols();
+  for (long i = 0; i < flex.lambda.size(); ++i) found += flex.lambda[i] < mu;
+  out.sturm_count = count;
+  if (count == found) {
+    ms.how += fmt::format("; Sturm count {} below {:.8g} rad/s agrees", count, std::sqrt(mu));
+    return false;
+  }
+  if (count < found) {
+    out.converged = false;
+    out.warnings.push_back(fmt::format("Sturm count {} below {:.8g} rad/s is less than the {} modes found", count,
+                                       std::sqrt(mu), found));
+    return false;
+  }
+  if (attempt == 2) {
+    out.converged = false;
+    out.warnings.push_back(fmt::format("Sturm count {} below {:.8g} rad/s exceeds the {} modes found: modes missed",
+                                       count, std::sqrt(mu), found));
+    return false;
+  }
+  // A recovery, not a doubt: the rerun's modes face the same count (a fall-back on record).
+  out.fallbacks.push_back(fmt::format("eigen: the Sturm count found {} mode(s) missed by Lanczos; rerun with nev = {}",
+                                      count - found, nev + (count - found) + 2));
+  nev += (count - found) + 2;
+  nev = std::min(nev, ms.n_eff - 1);
+  return true;
+}
+
+/// The sparse path: shift-invert Lanczos checked by a Sturm count, refined where the pairs are poor.
+Flexible lanczos_modes(ModeSolve& ms) {
+  const System& sys = ms.sys;
+  const ModeOptions& opt = ms.opt;
+  Modes& out = ms.out;
+  const long kf = ms.kf, n_eff = ms.n_eff;
+  if (kf >= n_eff) throw std::runtime_error("shift-invert Lanczos needs fewer modes than unknowns; use the dense solver");
+  const double sigma = choose_shift(ms.model, sys);
+  out.shift = sigma;
+  Lanczos lz{ShiftInvertOp(sys, ms.R), Spectra::SparseSymMatProd<double>(sys.M), std::mt19937(opt.seed),
+             std::uniform_real_distribution<double>(-1.0, 1.0), sigma};
+  SturmCheck sturm;
+  // The Sturm check's ordering and symbolic analysis need only the pattern: on a second core
+  // they overlap the Lanczos iteration (read-only access to sys on both threads).
+  if (opt.sturm_check)
+    sturm.analysis = std::async(std::launch::async, [&ldlt = sturm.ldlt, &sys] {
+      detail::reserve_blas_workspace();
+      ldlt.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups);
+    });
+  Flexible flex;
+  long nev = kf;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const long ncv = std::min<long>(n_eff, std::max<long>(2 * nev + 1, nev + 16));
+    if (nev >= ncv) throw std::runtime_error("too many modes requested for the Lanczos subspace; use the dense solver");
+    if (!lanczos_attempt(ms, lz, nev, ncv, flex)) break;
+    if (!opt.sturm_check || flex.lambda.size() < kf) break;
+    if (!sturm_asks_rerun(ms, sturm, flex, sigma, attempt, nev)) break;
+  }
+  if (flex.lambda.size() > kf) {
+    flex.lambda.conservativeResize(kf);
+    flex.Z.conservativeResize(Eigen::NoChange, kf);
+  }
+  if (const double back = out.converged && kf > 0 && 3 * kf < n_eff ? pair_backward_error(sys, flex) : 0.0;
+      back > opt.backward_error_warning) {
+    // The operator is factorized at sigma already: two more solves per pair.
+    const Flexible before = flex;
+    const int steps = refine_pairs(lz.op, sys, sigma, flex);
+    if (steps > 0 && pair_backward_error(sys, flex) < back)
+      ms.how += fmt::format("; refined by {} shift-invert subspace step(s)", steps);
+    else
+      flex = before;
+  }
+  out.operations = lz.op.operations();
+  out.factor_seconds += lz.op.factor_seconds();
+  return flex;
+}
+
+/// The first nr rigid modes (exact zeros), then the flexible pairs M-normalized, into out.
+void store_pairs(const System& sys, const Eigen::MatrixXd& R, long nr, const Flexible& flex, Modes& out) {
+  const long n = sys.n();
+  const long nf = flex.lambda.size();
+  out.rigid = static_cast<int>(nr);
+  out.lambda.resize(nr + nf);
+  out.Z.resize(n, nr + nf);
+  for (long i = 0; i < nr; ++i) {
+    out.lambda[i] = 0;
+    out.Z.col(i) = R.col(i);
+  }
+  for (long i = 0; i < nf; ++i) {
+    out.lambda[nr + i] = flex.lambda[i];
+    Eigen::VectorXd z = flex.Z.col(i);
+    const double mn = std::sqrt(z.dot(sys.M * z));
+    out.Z.col(nr + i) = z / mn;
+  }
+}
+
 Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions& opt) {
   Modes out;
   const long n = sys.n(), m = sys.m();
@@ -209,156 +408,22 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
   const bool dense = opt.method == EigenMethod::Dense ||
                      (opt.method == EigenMethod::Auto &&
                       (n <= opt.dense_limit || (3 * kf >= n_eff && n <= 4 * opt.dense_limit) || n_eff < 40));
+  ModeSolve ms{model, sys, opt, R, n_eff, kf, out, {}};
   Flexible flex;
-  std::string how;
-  if (kf > 0 && dense) {
-    const double sigma = choose_shift(model, sys);
-    flex = dense_flexible(sys, R, kf, sigma, how);
-    // Two steps of subspace iteration with the sparse operator on the full coordinates, each
-    // closed by Rayleigh-Ritz: the reduced matrices of the dense path are formed through the
-    // constraint basis, which spreads the rounding of stiff supports over every coordinate;
-    // W' (K - sigma M) W = W' M Z needs no product with K, so the refined pairs do not inherit it
-    // (beam on 1e12 EI/L^3 springs, 128 segments: backward error 1e-7 -> 5e-9). Only when a
-    // small part of the spectrum is wanted: the complete spectral decomposition of the FRF would
-    // pay O(n^3) again for nothing.
-    if (3 * kf < n_eff) {
-      try {
-        ShiftInvertOp op(sys, R);
-        op.set_shift(sigma);
-        const int steps = refine_pairs(op, sys, sigma, flex);
-        out.factor_seconds += op.factor_seconds();
-        if (steps > 0)
-          how += fmt::format("; refined by {} shift-invert subspace step(s) on the full coordinates ({})", steps,
-                             op.solver_name());
-        if (steps < 2)
-          out.warnings.push_back(fmt::format("dense eigenpairs refined by {} of 2 steps: a Rayleigh-Ritz step failed", steps));
-      } catch (const std::exception& e) {
-        out.warnings.push_back(fmt::format("dense eigenpairs not refined: {}", e.what()));
-      }
-    }
-  } else if (kf > 0) {
-    if (kf >= n_eff) throw std::runtime_error("shift-invert Lanczos needs fewer modes than unknowns; use the dense solver");
-    const double sigma = choose_shift(model, sys);
-    out.shift = sigma;
-    ShiftInvertOp op(sys, R);
-    Spectra::SparseSymMatProd<double> bop(sys.M);
-    std::mt19937 rng(opt.seed);
-    std::uniform_real_distribution<double> uni(-1.0, 1.0);
-    KktLdlt sturm;
-    bool sturm_analysed = false;
-    // The Sturm check's ordering and symbolic analysis need only the pattern: on a second core
-    // they overlap the Lanczos iteration (read-only access to sys on both threads).
-    std::future<void> sturm_analysis;
-    if (opt.sturm_check)
-      sturm_analysis = std::async(std::launch::async, [&sturm, &sys] { detail::reserve_blas_workspace(); sturm.analyze(SpMat(sys.K + sys.M), sys.G, sys.groups); });
-    long nev = kf;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-      const long ncv = std::min<long>(n_eff, std::max<long>(2 * nev + 1, nev + 16));
-      if (nev >= ncv) throw std::runtime_error("too many modes requested for the Lanczos subspace; use the dense solver");
-      Spectra::SymGEigsShiftSolver<ShiftInvertOp, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
-          eigs(op, bop, nev, ncv, sigma);
-      // Start in the flexible space: the operator maps onto {G z = 0, R' M z = 0}.
-      Eigen::VectorXd v0(n), s0(n);
-      for (long i = 0; i < n; ++i) v0[i] = uni(rng);
-      op.perform_op(v0.data(), s0.data());
-      eigs.init(s0.data());
-      const long nconv = eigs.compute(Spectra::SortRule::LargestMagn, 1000, opt.tolerance, Spectra::SortRule::SmallestAlge);
-      out.iterations += eigs.num_iterations();
-      flex.lambda = eigs.eigenvalues();
-      flex.Z = eigs.eigenvectors();
-      const bool ok = eigs.info() == Spectra::CompInfo::Successful && nconv >= nev;
-      how = fmt::format(
-          "shift-invert Lanczos (Spectra SymGEigsShiftSolver, sigma = {:.6g} rad^2/s^2, nev = {}, ncv = {}, {}), {} of {} "
-          "converged in {} restarts, {} solves",
-          sigma, nev, ncv, op.solver_name(), nconv, nev, eigs.num_iterations(), op.operations());
-      if (!ok) {
-        out.converged = false;
-        out.warnings.push_back(fmt::format("Lanczos did not converge: {} of {} eigenpairs (tolerance {:g})", nconv, nev,
-                                           opt.tolerance));
-        break;
-      }
-      if (!opt.sturm_check || flex.lambda.size() < kf) break;
-      // Sturm count just above the kf-th eigenvalue.
-      const double mu = flex.lambda[kf - 1] * (1 + 1e-6) + 1e-12 * std::abs(sigma);
-      const auto t0 = Clock::now();
-      if (!sturm_analysed) {
-        sturm_analysis.get();  // rethrows what the analysis threw
-        sturm_analysed = true;
-      }
-      const bool fact = sturm.factorize(SpMat(sys.K - mu * sys.M));
-      out.factor_seconds += seconds_since(t0);
-      if (!fact) {
-        out.warnings.push_back("Sturm count skipped: zero pivot at the check point");
-        break;
-      }
-      const long count = sturm.negative_count();
-      long found = r;
-      for (long i = 0; i < flex.lambda.size(); ++i) found += flex.lambda[i] < mu;
-      out.sturm_count = count;
-      if (count == found) {
-        how += fmt::format("; Sturm count {} below {:.8g} rad/s agrees", count, std::sqrt(mu));
-        break;
-      }
-      if (count < found) {
-        out.converged = false;
-        out.warnings.push_back(fmt::format("Sturm count {} below {:.8g} rad/s is less than the {} modes found", count,
-                                           std::sqrt(mu), found));
-        break;
-      }
-      if (attempt == 2) {
-        out.converged = false;
-        out.warnings.push_back(fmt::format("Sturm count {} below {:.8g} rad/s exceeds the {} modes found: modes missed",
-                                           count, std::sqrt(mu), found));
-        break;
-      }
-      // A recovery, not a doubt: the rerun's modes face the same count (a fall-back on record).
-      out.fallbacks.push_back(fmt::format("eigen: the Sturm count found {} mode(s) missed by Lanczos; rerun with nev = {}",
-                                          count - found, nev + (count - found) + 2));
-      nev += (count - found) + 2;
-      nev = std::min(nev, n_eff - 1);
-    }
-    if (flex.lambda.size() > kf) {
-      flex.lambda.conservativeResize(kf);
-      flex.Z.conservativeResize(Eigen::NoChange, kf);
-    }
-    if (const double back = out.converged && kf > 0 && 3 * kf < n_eff ? pair_backward_error(sys, flex) : 0.0;
-        back > opt.backward_error_warning) {
-      // The operator is factorized at sigma already: two more solves per pair.
-      const Flexible before = flex;
-      const int steps = refine_pairs(op, sys, sigma, flex);
-      if (steps > 0 && pair_backward_error(sys, flex) < back)
-        how += fmt::format("; refined by {} shift-invert subspace step(s)", steps);
-      else
-        flex = before;
-    }
-    out.operations = op.operations();
-    out.factor_seconds += op.factor_seconds();
-  }
-  if (kf == 0) how = "no flexible modes requested";
+  if (kf > 0 && dense) flex = dense_modes(ms);
+  else if (kf > 0) flex = lanczos_modes(ms);
+  if (kf == 0) ms.how = "no flexible modes requested";
 
   // Rigid modes (exact zeros) then the flexible ones.
   const long nr = std::min<long>(r, want);
-  const long nf = flex.lambda.size();
-  out.rigid = static_cast<int>(nr);
-  out.lambda.resize(nr + nf);
-  out.Z.resize(n, nr + nf);
-  for (long i = 0; i < nr; ++i) {
-    out.lambda[i] = 0;
-    out.Z.col(i) = R.col(i);
-  }
-  for (long i = 0; i < nf; ++i) {
-    out.lambda[nr + i] = flex.lambda[i];
-    Eigen::VectorXd z = flex.Z.col(i);
-    const double mn = std::sqrt(z.dot(sys.M * z));
-    out.Z.col(nr + i) = z / mn;
-  }
+  store_pairs(sys, R, nr, flex, out);
   std::string rigid_text;
   if (r > 0) {
     rigid_text = fmt::format("; {} free rigid-body mode(s) ({}) found structurally and reported as 0", r,
                              fmt::join(rigid.motions, "; "));
   }
   const std::vector<char> near_rigid = detail::take_near_rigid_pairs(model, sys, nr, out, rigid_text);
-  out.method = how + rigid_text;
+  out.method = ms.how + rigid_text;
 
   detail::label_families(model, sys, nr, out);
   detail::measure_residuals(sys, nr, near_rigid, out);

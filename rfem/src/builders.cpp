@@ -40,16 +40,22 @@ Eigen::AlignedBox3d box(double x0, double x1, double y0, double y1, double z0, d
 // Beam
 // ---------------------------------------------------------------------------------------------
 
-Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
-  if (!s.is_beam()) throw std::invalid_argument("build_beam: the scene is not a beam");
-  if (n < 1) throw std::invalid_argument(fmt::format("build_beam: need >= 1 segment (got {})", n));
-  const double L = s.geometry.length, bw = s.geometry.width, bh = s.geometry.height;
-  const Section sec = s.section();  // the first piece's (characteristic frequency only)
-  const Material& mat = s.material;
-  const std::vector<Segment> pieces = s.beam_pieces();
-  const bool eb = s.theory == Theory::EulerBernoulli;
-  const double d = L / n;
+namespace {
 
+/// What the beam builder's phases share: the scene, its pieces and the mesh of n segments.
+struct BeamSetup {
+  const Scene& s;
+  const std::vector<Segment>& pieces;
+  int n;
+  double L, d;
+  bool eb, joints;
+};
+
+/// The beam model's DOFs and their families, its scales and its description (no bodies yet).
+Model start_beam_model(const BeamSetup& b) {
+  const Scene& s = b.s;
+  const int n = b.n;
+  const bool eb = b.eb, joints = b.joints;
   Model m;
   switch (s.physics) {
     case Physics::Bending: m.active = dofs::kBendingXZ; break;
@@ -58,16 +64,24 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     case Physics::Lateral: m.active = dofs::kLateral; break;
   }
   for (int dof : m.active) m.dof_family.push_back(beam_family(dof));
-  m.length_scale = L;
-  m.loss_factor = mat.loss_factor;
-  const bool joints = eb && opt.rigid_shear == RigidShear::JointCoordinates;
+  m.length_scale = b.L;
+  m.loss_factor = s.material.loss_factor;
   m.description = fmt::format(
       "beam: {} segments, {} RFEs (centred at the nodes, half-length ends), {} SDEs, {} {}", n, n + 1, n,
       to_string(s.physics),
       !eb ? "Timoshenko (shear SDE kGA/d)"
           : joints ? "Euler-Bernoulli (rigid shear exact: joint-displacement coordinates)"
                    : "Euler-Bernoulli (rigid shear exact: constraints with multipliers)");
+  return m;
+}
 
+/// The rigid elements, each with the mass and inertia of its cell, and the grid they stand on.
+void add_beam_elements(Model& m, const BeamSetup& b) {
+  const Scene& s = b.s;
+  const std::vector<Segment>& pieces = b.pieces;
+  const int n = b.n;
+  const double L = b.L, bw = s.geometry.width, bh = s.geometry.height, d = b.d;
+  const bool eb = b.eb;
   // Rigid elements at the nodes x_j = j d.
   for (int j = 0; j <= n; ++j) {
     RigidElement r;
@@ -88,6 +102,12 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     m.grid.element.push_back(j);
   }
   m.grid.y = {0.0};
+}
+
+/// The point singularities of the active second-order fields, piece by piece.
+void add_beam_singularities(Model& m, const BeamSetup& b) {
+  const std::vector<Segment>& pieces = b.pieces;
+  const bool eb = b.eb;
   // Slope jumps of the second-order fields under their own point actions (PointSingularity), with
   // the stiffness of the piece the action is on.
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -109,19 +129,33 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     kink(dofs::Ry, pm.E * ps.Iy);
     kink(dofs::Rz, pm.E * ps.Iz);
   }
+}
+
+/// The SDEs joining neighbouring rigid elements.
+void add_beam_sdes(Model& m, const BeamSetup& b) {
+  const int n = b.n;
+  const double d = b.d;
+  const bool eb = b.eb, joints = b.joints;
   // SDEs at the segment middles: the segment's stiffnesses in series over its pieces.
   for (int j = 0; j < n; ++j) {
     Sde sd;
     sd.a = j;
     sd.b = j + 1;
     sd.point = Vector3d((j + 0.5) * d, 0, 0);
-    const detail::CellStiffness k = detail::cell_stiffness(pieces, j * d, (j + 1) * d);
+    const detail::CellStiffness k = detail::cell_stiffness(b.pieces, j * d, (j + 1) * d);
     // Euler-Bernoulli: rigid shear (+inf: exact constraints), or none when the joint coordinates
     // satisfy it identically.
     const double shear = !eb ? k.kGA : joints ? 0.0 : kInf;
     sd.stiffness << k.EA, shear, shear, k.GJ, k.EIy, k.EIz;
     m.sdes.push_back(sd);
   }
+}
+
+/// The supports at the ends and between them, as SDEs to ground.
+void add_beam_supports(Model& m, const BeamSetup& b) {
+  const Scene& s = b.s;
+  const int n = b.n;
+  const double L = b.L, d = b.d;
   // End supports: SDEs to ground at the end points (the end RFEs' centres).
   auto support = [&](const Support& sp, int body, double x, const std::string& name) {
     Sde sd;
@@ -143,9 +177,15 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
     const PointSupport& p = s.point_supports[i];
     support(p.support, std::clamp(static_cast<int>(std::lround(p.x / d)), 0, n), p.x, fmt::format("points[{}]", i));
   }
+}
+
+/// The scene's point masses, added to the rigid elements around them.
+void add_beam_point_masses(Model& m, const BeamSetup& b) {
+  const int n = b.n;
+  const double d = b.d;
   // Point masses: at an RFE centre its own; between two, shared as linear interpolation weights
   // (t and 1 - t: the kinetic energy's error is of order m h^2 w'^2, the model's own order).
-  for (const PointMass& pm : s.masses) {
+  for (const PointMass& pm : b.s.masses) {
     const double u = std::clamp(pm.x / d, 0.0, static_cast<double>(n));
     const int j0 = std::min(static_cast<int>(std::floor(u)), n);
     const double t = u - j0;
@@ -156,56 +196,86 @@ Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
       r.inertia += share * Vector3d(pm.Jx, pm.Jy, pm.Jz);
     }
   }
+}
 
-  // Euler-Bernoulli by joint coordinates: the transverse displacements of the end points and joints.
-  if (joints) {
-    const int na = m.dofs_per_element();
-    std::vector<Eigen::Triplet<double>> t;
-    int col = 0;
-    // DOFs that are not transverse bending keep their own coordinate.
-    for (int j = 0; j <= n; ++j)
-      for (int k = 0; k < na; ++k) {
-        const int dof = m.active[static_cast<std::size_t>(k)];
-        if (dof == dofs::Ux || dof == dofs::Rx) {
-          t.emplace_back(j * na + k, col++, 1.0);
-          m.basis_names.push_back(fmt::format("{}[rfe {}]", dof_symbol(dof), j));
-        }
+/// The basis of joint coordinates (Euler-Bernoulli with rigid shear exact by construction).
+void set_beam_joint_basis(Model& m, const BeamSetup& b) {
+  const int n = b.n;
+  const double L = b.L, d = b.d;
+  const int na = m.dofs_per_element();
+  std::vector<Eigen::Triplet<double>> t;
+  int col = 0;
+  // DOFs that are not transverse bending keep their own coordinate.
+  for (int j = 0; j <= n; ++j)
+    for (int k = 0; k < na; ++k) {
+      const int dof = m.active[static_cast<std::size_t>(k)];
+      if (dof == dofs::Ux || dof == dofs::Rx) {
+        t.emplace_back(j * na + k, col++, 1.0);
+        m.basis_names.push_back(fmt::format("{}[rfe {}]", dof_symbol(dof), j));
       }
-    // One plane: translation DOF `tr`, rotation DOF `rot`, rot = sign * slope.
-    auto plane = [&](int tr, int rot, double sign, const char* sym) {
-      const int kt = m.local_index(tr), kr = m.local_index(rot);
-      if (kt < 0 || kr < 0) return;
-      const int c0 = col;  // W at x = 0; joints j + 1/2 at c0 + 1 + j; x = L at c0 + n + 1
-      m.basis_names.push_back(fmt::format("{}(x=0)", sym));
-      for (int j = 0; j < n; ++j) m.basis_names.push_back(fmt::format("{}(x={:.6g})", sym, (j + 0.5) * d));
-      m.basis_names.push_back(fmt::format("{}(x={:.6g})", sym, L));
-      col += n + 2;
-      for (int j = 0; j <= n; ++j) {
-        const int left = (j == 0) ? c0 : c0 + j;          // point on the element's left side
-        const int right = (j == n) ? c0 + n + 1 : c0 + 1 + j;
-        const double len = (j == 0 || j == n) ? d / 2 : d;
-        const long rt = static_cast<long>(j) * na + kt, rr = static_cast<long>(j) * na + kr;
-        if (j == 0) t.emplace_back(rt, left, 1.0);
-        else if (j == n) t.emplace_back(rt, right, 1.0);
-        else {
-          t.emplace_back(rt, left, 0.5);
-          t.emplace_back(rt, right, 0.5);
-        }
-        t.emplace_back(rr, right, sign / len);
-        t.emplace_back(rr, left, -sign / len);
+    }
+  // One plane: translation DOF `tr`, rotation DOF `rot`, rot = sign * slope.
+  auto plane = [&](int tr, int rot, double sign, const char* sym) {
+    const int kt = m.local_index(tr), kr = m.local_index(rot);
+    if (kt < 0 || kr < 0) return;
+    const int c0 = col;  // W at x = 0; joints j + 1/2 at c0 + 1 + j; x = L at c0 + n + 1
+    m.basis_names.push_back(fmt::format("{}(x=0)", sym));
+    for (int j = 0; j < n; ++j) m.basis_names.push_back(fmt::format("{}(x={:.6g})", sym, (j + 0.5) * d));
+    m.basis_names.push_back(fmt::format("{}(x={:.6g})", sym, L));
+    col += n + 2;
+    for (int j = 0; j <= n; ++j) {
+      const int left = (j == 0) ? c0 : c0 + j;          // point on the element's left side
+      const int right = (j == n) ? c0 + n + 1 : c0 + 1 + j;
+      const double len = (j == 0 || j == n) ? d / 2 : d;
+      const long rt = static_cast<long>(j) * na + kt, rr = static_cast<long>(j) * na + kr;
+      if (j == 0) t.emplace_back(rt, left, 1.0);
+      else if (j == n) t.emplace_back(rt, right, 1.0);
+      else {
+        t.emplace_back(rt, left, 0.5);
+        t.emplace_back(rt, right, 0.5);
       }
-    };
-    plane(dofs::Uz, dofs::Ry, -1.0, "w");  // theta_y = -dw/dx
-    plane(dofs::Uy, dofs::Rz, +1.0, "v");  // theta_z = +dv/dx
-    m.basis.resize(m.body_dofs(), col);
-    m.basis.setFromTriplets(t.begin(), t.end());
-  }
+      t.emplace_back(rr, right, sign / len);
+      t.emplace_back(rr, left, -sign / len);
+    }
+  };
+  plane(dofs::Uz, dofs::Ry, -1.0, "w");  // theta_y = -dw/dx
+  plane(dofs::Uy, dofs::Rz, +1.0, "v");  // theta_z = +dv/dx
+  m.basis.resize(m.body_dofs(), col);
+  m.basis.setFromTriplets(t.begin(), t.end());
+}
 
+/// The model's characteristic low frequency (omega_hint, the scale of the eigensolver's shift).
+double beam_omega_hint(const Scene& s, const Section& sec, double L) {
+  const Material& mat = s.material;
   // A characteristic low frequency: the lowest of bending (cantilever-like) and axial/torsion.
   double hint = 0.35 * std::pow(pi / L, 2) * std::sqrt(mat.E * std::min(sec.Iy, sec.Iz) / (mat.rho * sec.A));
   if (carries_axial(s.physics)) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.E / mat.rho));
   if (carries_torsion(s.physics)) hint = std::min(hint, 0.5 * pi / L * std::sqrt(mat.G * sec.J / (mat.rho * sec.Ip)));
-  m.omega_hint = hint;
+  return hint;
+}
+
+}  // namespace
+
+Model build_beam(const Scene& s, int n, const BeamOptions& opt) {
+  if (!s.is_beam()) throw std::invalid_argument("build_beam: the scene is not a beam");
+  if (n < 1) throw std::invalid_argument(fmt::format("build_beam: need >= 1 segment (got {})", n));
+  const double L = s.geometry.length;
+  const Section sec = s.section();  // the first piece's (characteristic frequency only)
+  const std::vector<Segment> pieces = s.beam_pieces();
+  const bool eb = s.theory == Theory::EulerBernoulli;
+  const double d = L / n;
+  const bool joints = eb && opt.rigid_shear == RigidShear::JointCoordinates;
+  const BeamSetup b{s, pieces, n, L, d, eb, joints};
+
+  Model m = start_beam_model(b);
+  add_beam_elements(m, b);
+  add_beam_singularities(m, b);
+  add_beam_sdes(m, b);
+  add_beam_supports(m, b);
+  add_beam_point_masses(m, b);
+  // Euler-Bernoulli by joint coordinates: the transverse displacements of the end points and joints.
+  if (joints) set_beam_joint_basis(m, b);
+  m.omega_hint = beam_omega_hint(s, sec, L);
   m.check();
   return m;
 }
@@ -243,24 +313,31 @@ Eigen::MatrixXd plate_fragment_correction(double D, double nu, double dl, double
   return D * A * (nu * (gx * gy.transpose() + gy * gx.transpose()) - 0.5 * (1.0 - nu) * s * s.transpose());
 }
 
-Model build_plate(const Scene& s, const PlateOptions& o) {
-  if (!s.is_plate()) throw std::invalid_argument("build_plate: the scene is not a plate");
-  if (o.nx < 1 || o.ny < 1)
-    throw std::invalid_argument(fmt::format("build_plate: need >= 1 fragment per side (got {}x{})", o.nx, o.ny));
-  const double a = s.geometry.length, b = s.geometry.width, h = s.geometry.height;
-  const Material& mat = s.material;
-  const bool kirchhoff = s.theory == Theory::Kirchhoff;
-  const bool corners = kirchhoff && o.rigid_shear == RigidShear::JointCoordinates;
-  const int nx = o.nx, ny = o.ny;
-  const double dl = a / nx, db = b / ny;
-  const double D = s.plate_D();
-  const double Gh3_6 = mat.G * h * h * h / 6.0;  // = D (1 - nu): twisting rigidity
+namespace {
 
+/// What the plate builder's phases share: the scene, the fragment mesh, the theory and the rigidities.
+struct PlateSetup {
+  const Scene& s;
+  int nx, ny;
+  double a, b, h, dl, db;
+  bool kirchhoff, corners;
+  double D, Gh3_6;
+  /// The rigid element at corner (i, j).
+  int id(int i, int j) const { return j * (nx + 1) + i; }
+};
+
+/// The share of a fragment's side that corner i of 0..n stands for (half at the edges).
+double half(int i, int n) { return (i == 0 || i == n) ? 0.5 : 1.0; }
+
+/// The plate model's DOFs and their families, its scales and its description (no bodies yet).
+Model start_plate_model(const PlateSetup& g, const PlateOptions& o) {
+  const int nx = g.nx, ny = g.ny;
+  const bool kirchhoff = g.kirchhoff, corners = g.corners;
   Model m;
   m.active = dofs::kPlate;
   m.dof_family.assign(m.active.size(), ModeFamily::Plate);
-  m.length_scale = std::max(a, b);
-  m.loss_factor = mat.loss_factor;
+  m.length_scale = std::max(g.a, g.b);
+  m.loss_factor = g.s.material.loss_factor;
   m.description = fmt::format(
       "plate: {}x{} fragments, {}x{} RFEs at the fragment corners (Table A2.1 types 1-4), {}{}", nx, ny, nx + 1,
       ny + 1,
@@ -268,39 +345,53 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
       : corners  ? "rigid transverse shear (Kirchhoff, exact: corner-value coordinates)"
                  : "rigid transverse shear (Kirchhoff, exact: constraints with multipliers)",
       o.bending_correction ? ", per-fragment Poisson/twist correction" : ", Table A1.1 springs only (no Poisson coupling)");
+  return m;
+}
 
-  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
-  auto half = [](int i, int n) { return (i == 0 || i == n) ? 0.5 : 1.0; };
+/// The rigid elements at the fragment corners, each with the mass and inertia of its cell, and the grid.
+void add_plate_elements(Model& m, const PlateSetup& g) {
+  const Material& mat = g.s.material;
+  const int nx = g.nx, ny = g.ny;
+  const double a = g.a, b = g.b, h = g.h, dl = g.dl, db = g.db;
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
       RigidElement r;
       const double x = i * dl, y = j * db, lx = dl * half(i, nx), ly = db * half(j, ny);
       r.centre = Vector3d(x, y, 0);
       r.mass = mat.rho * h * lx * ly;  // Table A2.1: full, half (types 2, 3) or quarter (type 4)
-      const double rot = kirchhoff ? 0.0 : r.mass * h * h / 12.0;
+      const double rot = g.kirchhoff ? 0.0 : r.mass * h * h / 12.0;
       r.inertia = Vector3d(r.mass * ly * ly / 12.0 + rot, r.mass * lx * lx / 12.0 + rot,
                            r.mass * (lx * lx + ly * ly) / 12.0);
       r.cell = box(std::max(0.0, x - dl / 2), std::min(a, x + dl / 2), std::max(0.0, y - db / 2),
                    std::min(b, y + db / 2), -h / 2, h / 2);
       r.label = fmt::format("rfe ({},{})", i, j);
       m.elements.push_back(r);
-      m.grid.element.push_back(id(i, j));
+      m.grid.element.push_back(g.id(i, j));
     }
   for (int i = 0; i <= nx; ++i) m.grid.x.push_back(i * dl);
   for (int j = 0; j <= ny; ++j) m.grid.y.push_back(j * db);
+}
+
+/// The singular part of the point-load Green's function.
+void add_plate_singularities(Model& m, const PlateSetup& g) {
+  const Material& mat = g.s.material;
+  const double h = g.h, D = g.D;
   // The point-load Green's function's singular part (PointSingularity): r^2 ln r / (8 pi D) in w
   // and its gradient in the rotations; Mindlin adds -ln r / (2 pi kappa G h) in w.
-  {
-    using PS = PointSingularity;
-    const double c = 1.0 / (8.0 * pi * D);
-    m.singularities.push_back({dofs::Uz, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::None});
-    m.singularities.push_back({dofs::Rx, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::PlusDy});
-    m.singularities.push_back({dofs::Ry, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::MinusDx});
-    if (!kirchhoff)
-      m.singularities.push_back(
-          {dofs::Uz, dofs::Uz, PS::Kind::ShearLog, 1.0 / (2.0 * pi * mat.kappa * mat.G * h), PS::Derivative::None});
-  }
+  using PS = PointSingularity;
+  const double c = 1.0 / (8.0 * pi * D);
+  m.singularities.push_back({dofs::Uz, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::None});
+  m.singularities.push_back({dofs::Rx, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::PlusDy});
+  m.singularities.push_back({dofs::Ry, dofs::Uz, PS::Kind::Biharmonic, c, PS::Derivative::MinusDx});
+  if (!g.kirchhoff)
+    m.singularities.push_back(
+        {dofs::Uz, dofs::Uz, PS::Kind::ShearLog, 1.0 / (2.0 * pi * mat.kappa * mat.G * h), PS::Derivative::None});
+}
 
+/// The in-plane torsion spring of a fragment's SDEs (k6).
+double fragment_torsion_spring(const PlateSetup& g) {
+  const Material& mat = g.s.material;
+  const double h = g.h, dl = g.dl, db = g.db;
   // Table A1.1 in-plane torsion constant of the fragment (inactive in plate bending; kept for completeness).
   const double lmin = std::min(dl, db), lmax = std::max(dl, db);
   double series = 0;
@@ -308,17 +399,23 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
     series += std::tanh((2 * k + 1) * pi * lmax / (2 * lmin)) / std::pow(2 * k + 1, 5);
   const double K1 = 1.0 / 3.0 - 64.0 * lmin / (std::pow(pi, 5) * lmax) * series;
   const double Js = K1 * lmin * lmin * lmin * lmax;
-  const double k6 = mat.G * Js / (4 * h);
+  return mat.G * Js / (4 * h);
+}
 
+/// The SDEs on the fragment sides: first those along x, then those along y.
+void add_plate_sdes(Model& m, const PlateSetup& g, double k6) {
+  const Material& mat = g.s.material;
+  const int nx = g.nx, ny = g.ny;
+  const double h = g.h, dl = g.dl, db = g.db, D = g.D, Gh3_6 = g.Gh3_6;
   // Kirchhoff: rigid shear (+inf: exact constraints), or none when the corner coordinates
   // satisfy it identically.
-  const double shear = !kirchhoff ? mat.kappa * mat.G * h : corners ? 0.0 : kInf;
+  const double shear = !g.kirchhoff ? mat.kappa * mat.G * h : g.corners ? 0.0 : kInf;
   // x-direction SDEs: sides (i, j)-(i + 1, j); tributary width: both adjacent fragments' halves.
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i < nx; ++i) {
       Sde sd;
-      sd.a = id(i, j);
-      sd.b = id(i + 1, j);
+      sd.a = g.id(i, j);
+      sd.b = g.id(i + 1, j);
       sd.point = Vector3d((i + 0.5) * dl, j * db, 0);
       const double r = db * half(j, ny) / dl;
       sd.stiffness << mat.E * h * r, shear * r, shear * r, Gh3_6 * r, D * r, k6;
@@ -330,20 +427,21 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i <= nx; ++i) {
       Sde sd;
-      sd.a = id(i, j);
-      sd.b = id(i, j + 1);
+      sd.a = g.id(i, j);
+      sd.b = g.id(i, j + 1);
       sd.point = Vector3d(i * dl, (j + 0.5) * db, 0);
       sd.axes = Ry;
       const double r = dl * half(i, nx) / db;
       sd.stiffness << mat.E * h * r, shear * r, shear * r, Gh3_6 * r, D * r, k6;
       m.sdes.push_back(sd);
     }
-  // Poisson coupling and Mindlin twist per fragment.
-  if (o.bending_correction) {
-    const auto Kc = std::make_shared<const Eigen::MatrixXd>(plate_fragment_correction(D, mat.nu, dl, db));
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) m.couplings.push_back({{id(i, j), id(i + 1, j), id(i, j + 1), id(i + 1, j + 1)}, Kc});
-  }
+}
+
+/// The supports along the four edges (y0, yB, x0, xL), as SDEs to ground on the edge elements.
+void add_plate_edge_supports(Model& m, const PlateSetup& g) {
+  const Scene& s = g.s;
+  const int nx = g.nx, ny = g.ny;
+  const double dl = g.dl, db = g.db;
   // Edge supports: the per-length springs act along the RFE's share of the edge (length l, centred
   // at P). Integrated over that segment of a rigid element, the translational layer k_t gives
   // k_t l on w(P) and k_t l^3 / 12 on the tilt along the edge (rotation about the in-plane
@@ -353,7 +451,7 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
     if (sp.translational == 0 && sp.rotational == 0) return;
     const int count = along_x ? nx : ny;
     for (int k = 0; k <= count; ++k) {
-      const int body = along_x ? id(k, fixed) : id(fixed, k);
+      const int body = along_x ? g.id(k, fixed) : g.id(fixed, k);
       const auto& cell = m.elements[static_cast<std::size_t>(body)].cell;
       Sde sd;
       sd.a = body;
@@ -379,13 +477,19 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
   edge(s.yB, true, ny, "yB");
   edge(s.x0, false, 0, "x0");
   edge(s.xL, false, nx, "xL");
+}
+
+/// The supports at points, as SDEs to ground.
+void add_plate_point_supports(Model& m, const PlateSetup& g) {
+  const Scene& s = g.s;
+  const int nx = g.nx, ny = g.ny;
+  const double dl = g.dl, db = g.db;
   // Supports at points: an SDE to ground at P on the RFE whose cell holds it (off its centre the
-  // attachment kinematics carry it), k_t on w and k_r on both rotations. Point masses: shared
-  // between the (up to) four centres around them by the bilinear weights of point loads.
+  // attachment kinematics carry it), k_t on w and k_r on both rotations.
   for (std::size_t k = 0; k < s.point_supports.size(); ++k) {
     const PointSupport& p = s.point_supports[k];
     Sde sd;
-    sd.a = id(std::clamp(static_cast<int>(std::lround(p.x / dl)), 0, nx), std::clamp(static_cast<int>(std::lround(p.y / db)), 0, ny));
+    sd.a = g.id(std::clamp(static_cast<int>(std::lround(p.x / dl)), 0, nx), std::clamp(static_cast<int>(std::lround(p.y / db)), 0, ny));
     sd.b = kGround;
     sd.point = Vector3d(p.x, p.y, 0);
     sd.stiffness << 0, 0, p.support.translational, p.support.rotational, p.support.rotational, 0;
@@ -393,64 +497,106 @@ Model build_plate(const Scene& s, const PlateOptions& o) {
     m.supports.emplace_back(static_cast<int>(m.sdes.size()), fmt::format("points[{}]", k));
     m.sdes.push_back(sd);
   }
+}
+
+/// The scene's point masses, added to the rigid elements around them.
+void add_plate_point_masses(Model& m, const Scene& s) {
+  // Point masses: shared between the (up to) four centres around them by the bilinear weights of
+  // point loads.
   for (const PointMass& pm : s.masses)
     for (auto [e, w] : point_weights(m, Vector3d(pm.x, pm.y, 0))) {
       RigidElement& r = m.elements[static_cast<std::size_t>(e)];
       r.mass += w * pm.mass;
       r.inertia += w * Vector3d(pm.Jx, pm.Jy, pm.Jz);
     }
+}
 
-  if (corners) {
-    // Coordinates c_pq, p = -1..nx, q = -1..ny: values at x_p = 0, (p + 1/2) dl, a (the ends and
-    // the x-sides' midpoints of the cells) times y_q alike. Along one line of RFEs (the beam's
-    // joint coordinates): w_i = (c_{i-1} + c_i) / 2 and dw/dx_i = (c_i - c_{i-1}) / dl inside,
-    // w_0 = c_{-1} and w_n = c_n at the half-length ends (centred on the edge). A side's
-    // midpoint then moves by the same c from both RFEs, so the shear deformation vanishes.
-    struct Tap {
-      int p;
-      double value, slope;
-    };
-    auto line = [](int i, int n, double d) -> std::array<Tap, 2> {
-      if (i == 0) return {{{-1, 1.0, -2.0 / d}, {0, 0.0, 2.0 / d}}};
-      if (i == n) return {{{n - 1, 0.0, -2.0 / d}, {n, 1.0, 2.0 / d}}};
-      return {{{i - 1, 0.5, -1.0 / d}, {i, 0.5, 1.0 / d}}};
-    };
-    // The map c -> (w, theta_x, theta_y) has one null vector, (-1)^(p+q) on the inner values
-    // and 0 on the edge values (every cell sees its corners cancel): c_00 is fixed at 0.
-    const int gauge = (nx + 2) + 1;
-    auto value_index = [&](int p, int q) { return (q + 1) * (nx + 2) + (p + 1); };
-    auto column = [&](int p, int q) {
-      const int k = value_index(p, q);
-      return k < gauge ? k : k - 1;
-    };
-    auto place = [](int p, int n, double d, double length) { return p < 0 ? 0.0 : p == n ? length : (p + 0.5) * d; };
-    for (int q = -1; q <= ny; ++q)
-      for (int p = -1; p <= nx; ++p)
-        if (value_index(p, q) != gauge) {
-          m.basis_names.push_back(fmt::format("c(x={:.6g}, y={:.6g})", place(p, nx, dl, a), place(q, ny, db, b)));
-          m.basis_points.emplace_back(place(p, nx, dl, a), place(q, ny, db, b), 0.0);
-        }
-    const int kw = m.local_index(dofs::Uz), kx = m.local_index(dofs::Rx), ky = m.local_index(dofs::Ry);
-    const int na = m.dofs_per_element();
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<std::size_t>(12 * (nx + 1) * (ny + 1)));
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) {
-        const long row = static_cast<long>(id(i, j)) * na;
-        for (const Tap& tx : line(i, nx, dl))
-          for (const Tap& ty : line(j, ny, db)) {
-            if (value_index(tx.p, ty.p) == gauge) continue;
-            const int c = column(tx.p, ty.p);
-            // theta_x = +dw/dy, theta_y = -dw/dx (right-handed rotations, w along +z).
-            const double w = tx.value * ty.value, rx = tx.value * ty.slope, ry = -tx.slope * ty.value;
-            if (w != 0.0) t.emplace_back(row + kw, c, w);
-            if (rx != 0.0) t.emplace_back(row + kx, c, rx);
-            if (ry != 0.0) t.emplace_back(row + ky, c, ry);
-          }
+/// The basis of corner-value coordinates (Kirchhoff with rigid transverse shear exact by construction).
+void set_plate_corner_basis(Model& m, const PlateSetup& g) {
+  const int nx = g.nx, ny = g.ny;
+  const double a = g.a, b = g.b, dl = g.dl, db = g.db;
+  // Coordinates c_pq, p = -1..nx, q = -1..ny: values at x_p = 0, (p + 1/2) dl, a (the ends and
+  // the x-sides' midpoints of the cells) times y_q alike. Along one line of RFEs (the beam's
+  // joint coordinates): w_i = (c_{i-1} + c_i) / 2 and dw/dx_i = (c_i - c_{i-1}) / dl inside,
+  // w_0 = c_{-1} and w_n = c_n at the half-length ends (centred on the edge). A side's
+  // midpoint then moves by the same c from both RFEs, so the shear deformation vanishes.
+  struct Tap {
+    int p;
+    double value, slope;
+  };
+  auto line = [](int i, int n, double d) -> std::array<Tap, 2> {
+    if (i == 0) return {{{-1, 1.0, -2.0 / d}, {0, 0.0, 2.0 / d}}};
+    if (i == n) return {{{n - 1, 0.0, -2.0 / d}, {n, 1.0, 2.0 / d}}};
+    return {{{i - 1, 0.5, -1.0 / d}, {i, 0.5, 1.0 / d}}};
+  };
+  // The map c -> (w, theta_x, theta_y) has one null vector, (-1)^(p+q) on the inner values
+  // and 0 on the edge values (every cell sees its corners cancel): c_00 is fixed at 0.
+  const int gauge = (nx + 2) + 1;
+  auto value_index = [&](int p, int q) { return (q + 1) * (nx + 2) + (p + 1); };
+  auto column = [&](int p, int q) {
+    const int k = value_index(p, q);
+    return k < gauge ? k : k - 1;
+  };
+  auto place = [](int p, int n, double d, double length) { return p < 0 ? 0.0 : p == n ? length : (p + 0.5) * d; };
+  for (int q = -1; q <= ny; ++q)
+    for (int p = -1; p <= nx; ++p)
+      if (value_index(p, q) != gauge) {
+        m.basis_names.push_back(fmt::format("c(x={:.6g}, y={:.6g})", place(p, nx, dl, a), place(q, ny, db, b)));
+        m.basis_points.emplace_back(place(p, nx, dl, a), place(q, ny, db, b), 0.0);
       }
-    m.basis.resize(m.body_dofs(), (nx + 2) * (ny + 2) - 1);
-    m.basis.setFromTriplets(t.begin(), t.end());
+  const int kw = m.local_index(dofs::Uz), kx = m.local_index(dofs::Rx), ky = m.local_index(dofs::Ry);
+  const int na = m.dofs_per_element();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(12 * (nx + 1) * (ny + 1)));
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const long row = static_cast<long>(g.id(i, j)) * na;
+      for (const Tap& tx : line(i, nx, dl))
+        for (const Tap& ty : line(j, ny, db)) {
+          if (value_index(tx.p, ty.p) == gauge) continue;
+          const int c = column(tx.p, ty.p);
+          // theta_x = +dw/dy, theta_y = -dw/dx (right-handed rotations, w along +z).
+          const double w = tx.value * ty.value, rx = tx.value * ty.slope, ry = -tx.slope * ty.value;
+          if (w != 0.0) t.emplace_back(row + kw, c, w);
+          if (rx != 0.0) t.emplace_back(row + kx, c, rx);
+          if (ry != 0.0) t.emplace_back(row + ky, c, ry);
+        }
+    }
+  m.basis.resize(m.body_dofs(), (nx + 2) * (ny + 2) - 1);
+  m.basis.setFromTriplets(t.begin(), t.end());
+}
+
+}  // namespace
+
+Model build_plate(const Scene& s, const PlateOptions& o) {
+  if (!s.is_plate()) throw std::invalid_argument("build_plate: the scene is not a plate");
+  if (o.nx < 1 || o.ny < 1)
+    throw std::invalid_argument(fmt::format("build_plate: need >= 1 fragment per side (got {}x{})", o.nx, o.ny));
+  const double a = s.geometry.length, b = s.geometry.width, h = s.geometry.height;
+  const Material& mat = s.material;
+  const bool kirchhoff = s.theory == Theory::Kirchhoff;
+  const bool corners = kirchhoff && o.rigid_shear == RigidShear::JointCoordinates;
+  const int nx = o.nx, ny = o.ny;
+  const double dl = a / nx, db = b / ny;
+  const double D = s.plate_D();
+  const double Gh3_6 = mat.G * h * h * h / 6.0;  // = D (1 - nu): twisting rigidity
+  const PlateSetup g{s, nx, ny, a, b, h, dl, db, kirchhoff, corners, D, Gh3_6};
+
+  Model m = start_plate_model(g, o);
+  add_plate_elements(m, g);
+  add_plate_singularities(m, g);
+  add_plate_sdes(m, g, fragment_torsion_spring(g));
+  // Poisson coupling and Mindlin twist per fragment.
+  if (o.bending_correction) {
+    const auto Kc = std::make_shared<const Eigen::MatrixXd>(plate_fragment_correction(D, mat.nu, dl, db));
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        m.couplings.push_back({{g.id(i, j), g.id(i + 1, j), g.id(i, j + 1), g.id(i + 1, j + 1)}, Kc});
   }
+  add_plate_edge_supports(m, g);
+  add_plate_point_supports(m, g);
+  add_plate_point_masses(m, s);
+  if (corners) set_plate_corner_basis(m, g);
 
   m.omega_hint = 0.3 * pi * pi * (1 / (a * a) + 1 / (b * b)) * std::sqrt(D / (mat.rho * h));
   m.check();

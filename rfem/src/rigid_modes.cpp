@@ -146,22 +146,18 @@ RigidModes free_rigid_modes(const Model& m, const System& sys) {
   return out;
 }
 
-NearRigid near_rigid_modes(const Model& m, const System& sys) {
-  NearRigid out;
-  out.Z.resize(sys.n(), 0);
+namespace {
+
+/// The candidates' deformation: A'A of the components between elements, the springs to ground as rows.
+void split_deformation(const Model& m, const std::vector<Eigen::VectorXd>& cand, Eigen::MatrixXd& internal,
+                       std::vector<Eigen::RowVectorXd>& ground_rows, std::vector<Eigen::RowVectorXd>& ground_shape) {
   const double L = m.length_scale;
-  std::vector<Eigen::VectorXd> cand;
-  std::vector<std::string> names;
-  rigid_candidates(m, cand, names);
   const long nc = static_cast<long>(cand.size());
-  if (nc == 0) return out;
   // Internal deformation (SDEs between elements, couplings), as in free_rigid_modes, and the
   // energy of the finite springs to ground; a spring to ground that is rigid is a held support.
   // The ground springs are kept as rows sqrt(k) d' (d: the spring's deformation under each
   // candidate), not summed into d k d': springs of 1e19 and 1 N/m on one beam (pinned at one end
   // by the stiff one, rocking on the soft one) leave the soft pair in the rounding of the sum.
-  Eigen::MatrixXd internal = Eigen::MatrixXd::Zero(nc, nc);
-  std::vector<Eigen::RowVectorXd> ground_rows, ground_shape;
   Eigen::MatrixXd def(6, nc);
   for (const Sde& sd : m.sdes) {
     for (long j = 0; j < nc; ++j) def.col(j) = deformation(m, sd, cand[static_cast<std::size_t>(j)]);
@@ -179,14 +175,18 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
       }
     }
   }
-  if (ground_rows.empty()) return out;
-  add_coupling_deformation(m, cand, internal);
+}
+
+/// The combinations deforming nothing inside, representable over z (Z, coefficients C); false if none.
+bool internal_null_space(const System& sys, const std::vector<Eigen::VectorXd>& cand, const Eigen::MatrixXd& internal,
+                         Eigen::MatrixXd& Z, Eigen::MatrixXd& C) {
+  const long nc = static_cast<long>(cand.size());
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(internal);
-  if (es.info() != Eigen::Success) return out;
+  if (es.info() != Eigen::Success) return false;
   // Combinations that deform nothing inside, representable over z (not held by a rigid support).
   SpMat TtT = sys.T.transpose() * sys.T;
   Eigen::SimplicialLDLT<SpMat> ldlt(TtT);
-  if (ldlt.info() != Eigen::Success) return out;
+  if (ldlt.info() != Eigen::Success) return false;
   std::vector<Eigen::VectorXd> zs, coef;
   const double floor = deformation_null_floor(es.eigenvalues());
   for (long i = 0; i < nc; ++i) {
@@ -199,51 +199,55 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     zs.push_back(z);
     coef.push_back(nv);
   }
-  long r = static_cast<long>(zs.size());
-  if (r == 0) return out;
-  Eigen::MatrixXd Z(sys.n(), r), C(nc, r);
+  const long r = static_cast<long>(zs.size());
+  if (r == 0) return false;
+  Z.resize(sys.n(), r);
+  C.resize(nc, r);
   for (long i = 0; i < r; ++i) {
     Z.col(i) = zs[static_cast<std::size_t>(i)];
     C.col(i) = coef[static_cast<std::size_t>(i)];
   }
-  // Rayleigh-Ritz: K_r = B' B with B = [sqrt(k) d'] C, M_r = U' U. The eigenvalues of K_r c =
-  // lambda M_r c are the squared singular values of B U^-1, taken by a QR with full pivoting on
-  // the rows sorted by decreasing norm, then Jacobi: a row-graded matrix keeps its small singular
-  // values to relative accuracy that way (Demmel and Veselic; Cox and Higham), where forming
-  // B' B would lose every one below eps times the largest.
-  // The free rigid motions (no spring deformed at all: free_rigid_modes' structural test, without
-  // the stiffnesses) are left out first, so every singular value below is a near-rigid pair's,
-  // however small the soft springs are against the stiff ones.
-  {
-    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(r, r);
-    for (const Eigen::RowVectorXd& g : ground_shape) {
-      const Eigen::RowVectorXd gc = g * C;
-      W.noalias() += gc.transpose() * gc;
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ws(W);
-    if (ws.info() != Eigen::Success) return out;
-    std::vector<long> held, free;
-    const double held_floor = deformation_null_floor(ws.eigenvalues());
-    for (long i = 0; i < r; ++i) (ws.eigenvalues()[i] > held_floor ? held : free).push_back(i);
-    if (held.empty()) return out;
-    Eigen::MatrixXd E(r, static_cast<long>(held.size())), F(r, static_cast<long>(free.size()));
-    for (std::size_t i = 0; i < held.size(); ++i) E.col(static_cast<long>(i)) = ws.eigenvectors().col(held[i]);
-    for (std::size_t i = 0; i < free.size(); ++i) F.col(static_cast<long>(i)) = ws.eigenvectors().col(free[i]);
-    // Near-rigid modes are M-orthogonal to the free rigid ones (K is zero on those): the held
-    // combinations less their M-projection on the free ones, which deforms no spring either. The
-    // Euclidean complement alone gave a bar rocking on one end spring sqrt(1.5 k / m) for 2 sqrt(k / m).
-    if (!free.empty()) {
-      const Eigen::MatrixXd Mz = Z.transpose() * (sys.M * Z);
-      const Eigen::MatrixXd Mff = F.transpose() * Mz * F, Mfh = F.transpose() * Mz * E;
-      E -= F * Mff.ldlt().solve(Mfh);
-    }
-    C = C * E;
-    Z = Z * E;
-    r = static_cast<long>(held.size());
+  return true;
+}
+
+/// Keeps in Z and C only the combinations that a spring to ground holds; false where none is.
+bool leave_out_free_motions(const System& sys, const std::vector<Eigen::RowVectorXd>& ground_shape, Eigen::MatrixXd& Z,
+                            Eigen::MatrixXd& C) {
+  const long r = Z.cols();
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(r, r);
+  for (const Eigen::RowVectorXd& g : ground_shape) {
+    const Eigen::RowVectorXd gc = g * C;
+    W.noalias() += gc.transpose() * gc;
   }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ws(W);
+  if (ws.info() != Eigen::Success) return false;
+  std::vector<long> held, free;
+  const double held_floor = deformation_null_floor(ws.eigenvalues());
+  for (long i = 0; i < r; ++i) (ws.eigenvalues()[i] > held_floor ? held : free).push_back(i);
+  if (held.empty()) return false;
+  Eigen::MatrixXd E(r, static_cast<long>(held.size())), F(r, static_cast<long>(free.size()));
+  for (std::size_t i = 0; i < held.size(); ++i) E.col(static_cast<long>(i)) = ws.eigenvectors().col(held[i]);
+  for (std::size_t i = 0; i < free.size(); ++i) F.col(static_cast<long>(i)) = ws.eigenvectors().col(free[i]);
+  // Near-rigid modes are M-orthogonal to the free rigid ones (K is zero on those): the held
+  // combinations less their M-projection on the free ones, which deforms no spring either. The
+  // Euclidean complement alone gave a bar rocking on one end spring sqrt(1.5 k / m) for 2 sqrt(k / m).
+  if (!free.empty()) {
+    const Eigen::MatrixXd Mz = Z.transpose() * (sys.M * Z);
+    const Eigen::MatrixXd Mff = F.transpose() * Mz * F, Mfh = F.transpose() * Mz * E;
+    E -= F * Mff.ldlt().solve(Mfh);
+  }
+  C = C * E;
+  Z = Z * E;
+  return true;
+}
+
+/// The near-rigid pairs (out.lambda, out.Z), ascending; false, and out untouched, where one fails.
+bool near_rigid_pairs(const System& sys, const std::vector<Eigen::RowVectorXd>& ground_rows, const Eigen::MatrixXd& Z,
+                      const Eigen::MatrixXd& C, NearRigid& out) {
+  const long r = Z.cols();
   const Eigen::MatrixXd Mr = Z.transpose() * (sys.M * Z);
   const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (Mr + Mr.transpose()));
-  if (llt.info() != Eigen::Success) return out;
+  if (llt.info() != Eigen::Success) return false;
   const Eigen::MatrixXd Uinv = llt.matrixU().solve(Eigen::MatrixXd::Identity(r, r));
   std::vector<Eigen::RowVectorXd> rows;
   rows.reserve(ground_rows.size());
@@ -255,7 +259,7 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
   B.setZero();
   for (std::size_t i = 0; i < rows.size(); ++i) B.row(static_cast<long>(i)) = rows[i];
   const Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(B, Eigen::ComputeFullV);
-  if (svd.info() != Eigen::Success) return out;
+  if (svd.info() != Eigen::Success) return false;
   // Ascending (the SVD's order is descending).
   const Eigen::VectorXd& sv = svd.singularValues();
   std::vector<long> keep;
@@ -267,29 +271,62 @@ NearRigid near_rigid_modes(const Model& m, const System& sys) {
     out.lambda[static_cast<long>(k)] = sv[keep[k]] * sv[keep[k]];
     out.Z.col(static_cast<long>(k)) = Z * (Uinv * svd.matrixV().col(keep[k]));  // M-orthonormal
   }
+  return true;
+}
+
+/// Every finite spring component to ground as a functional over z, with its stiffness (out.springs).
+void add_ground_springs(const Model& m, const System& sys, NearRigid& out) {
   // The ground springs' deformation functionals over z (body DOFs of element a, then T').
-  if (!keep.empty()) {
-    const int na = m.dofs_per_element();
-    Eigen::VectorXd q = Eigen::VectorXd::Zero(m.body_dofs());
-    for (const Sde& sd : m.sdes) {
-      if (sd.b != kGround) continue;
-      Eigen::Matrix<double, 6, Eigen::Dynamic> D(6, na);
-      for (int j = 0; j < na; ++j) {
-        const long idx = static_cast<long>(sd.a) * na + j;
-        q[idx] = 1.0;
-        D.col(j) = deformation(m, sd, q);
-        q[idx] = 0.0;
-      }
-      for (int c = 0; c < 6; ++c) {
-        const double k = sd.stiffness[c];
-        if (!(k > 0) || !std::isfinite(k) || D.row(c).squaredNorm() == 0) continue;
-        Eigen::SparseVector<double> rq(m.body_dofs());
-        for (int j = 0; j < na; ++j)
-          if (D(c, j) != 0) rq.insert(static_cast<long>(sd.a) * na + j) = D(c, j);
-        out.springs.push_back({k, Eigen::SparseVector<double>(sys.T.transpose() * rq)});
-      }
+  const int na = m.dofs_per_element();
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.body_dofs());
+  for (const Sde& sd : m.sdes) {
+    if (sd.b != kGround) continue;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> D(6, na);
+    for (int j = 0; j < na; ++j) {
+      const long idx = static_cast<long>(sd.a) * na + j;
+      q[idx] = 1.0;
+      D.col(j) = deformation(m, sd, q);
+      q[idx] = 0.0;
+    }
+    for (int c = 0; c < 6; ++c) {
+      const double k = sd.stiffness[c];
+      if (!(k > 0) || !std::isfinite(k) || D.row(c).squaredNorm() == 0) continue;
+      Eigen::SparseVector<double> rq(m.body_dofs());
+      for (int j = 0; j < na; ++j)
+        if (D(c, j) != 0) rq.insert(static_cast<long>(sd.a) * na + j) = D(c, j);
+      out.springs.push_back({k, Eigen::SparseVector<double>(sys.T.transpose() * rq)});
     }
   }
+}
+
+}  // namespace
+
+NearRigid near_rigid_modes(const Model& m, const System& sys) {
+  NearRigid out;
+  out.Z.resize(sys.n(), 0);
+  std::vector<Eigen::VectorXd> cand;
+  std::vector<std::string> names;
+  rigid_candidates(m, cand, names);
+  const long nc = static_cast<long>(cand.size());
+  if (nc == 0) return out;
+  Eigen::MatrixXd internal = Eigen::MatrixXd::Zero(nc, nc);
+  std::vector<Eigen::RowVectorXd> ground_rows, ground_shape;
+  split_deformation(m, cand, internal, ground_rows, ground_shape);
+  if (ground_rows.empty()) return out;
+  add_coupling_deformation(m, cand, internal);
+  Eigen::MatrixXd Z, C;
+  if (!internal_null_space(sys, cand, internal, Z, C)) return out;
+  // Rayleigh-Ritz: K_r = B' B with B = [sqrt(k) d'] C, M_r = U' U. The eigenvalues of K_r c =
+  // lambda M_r c are the squared singular values of B U^-1, taken by a QR with full pivoting on
+  // the rows sorted by decreasing norm, then Jacobi: a row-graded matrix keeps its small singular
+  // values to relative accuracy that way (Demmel and Veselic; Cox and Higham), where forming
+  // B' B would lose every one below eps times the largest.
+  // The free rigid motions (no spring deformed at all: free_rigid_modes' structural test, without
+  // the stiffnesses) are left out first, so every singular value below is a near-rigid pair's,
+  // however small the soft springs are against the stiff ones.
+  if (!leave_out_free_motions(sys, ground_shape, Z, C)) return out;
+  if (!near_rigid_pairs(sys, ground_rows, Z, C, out)) return out;
+  if (out.lambda.size() > 0) add_ground_springs(m, sys, out);
   return out;
 }
 
