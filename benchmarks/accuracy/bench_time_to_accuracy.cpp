@@ -106,14 +106,8 @@ Scene frequencies_only(Scene s, int modes) {
   return s;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  const std::string only = argc > 2 ? argv[2] : "";
-  const Registry reg = make_default_registry();
-  const std::string dir = MODALBENCH_SCENES_DIR;
-
+/// The scenes and their meshes per back-end, coarse to fine.
+std::vector<Case> make_cases(const std::string& dir) {
   std::vector<Case> cases;
   {
     Case k;
@@ -143,6 +137,131 @@ int main(int argc, char** argv) {
     k.meshes["dtfm"] = {"8", "16", "24", "32", "48", "64"};
     cases.push_back(k);
   }
+  return cases;
+}
+
+/// The case's reference frequencies and where they come from.
+void find_reference(const Registry& reg, Case& k) {
+  // The reference, in a child process too: the parent stays small, so that every run's child
+  // (a fork of it) starts from the same few MB and its peak is its own.
+  struct ReferenceOut {
+    int n = 0;
+    double f[64] = {};
+    double uncertainty = 0;
+    char source[512] = {};
+  };
+  auto* ref = static_cast<ReferenceOut*>(
+      mmap(nullptr, sizeof(ReferenceOut), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0));
+  new (ref) ReferenceOut{};
+  std::fflush(stdout);
+  if (const pid_t pid = fork(); pid == 0) {
+    std::vector<double> values;
+    double uncertainty = 0;
+    std::string source;
+    const Solver& exact = reg.get("exact");
+    if (exact.supports(k.scene).modes) {
+      const Result r = exact.solve(k.scene, {}, Options{});
+      if (r.ok()) {
+        values = r.frequencies_rad_s;
+        source = "exact";
+      }
+    }
+    if (values.empty()) {
+      // No exact solution: the extrapolated values with the smallest estimate of their own error.
+      for (const auto& [backend, spec] : {std::pair<std::string, std::string>{"dtfm", "64"}, {"rfem", "256x256"}}) {
+        const Result r = reg.get(backend).solve(k.scene, Discretization::parse(spec), Options{});
+        const Extrapolation& x = r.extrapolated;
+        if (x.frequencies_rad_s.empty() || !(values.empty() || x.frequency_error < uncertainty)) continue;
+        values = x.frequencies_rad_s;
+        uncertainty = x.frequency_error;
+        source = fmt::format("{} {}, Richardson of meshes {} (its estimate {:.1e}, {})", backend, spec, x.meshes,
+                             x.frequency_error, to_string(r.summary.status));
+      }
+    }
+    ref->n = static_cast<int>(std::min<std::size_t>(values.size(), 64));
+    for (int i = 0; i < ref->n; ++i) ref->f[i] = values[static_cast<std::size_t>(i)];
+    ref->uncertainty = uncertainty;
+    std::snprintf(ref->source, sizeof ref->source, "%s", source.c_str());
+    _exit(0);
+  } else {
+    int status = 0;
+    waitpid(pid, &status, 0);
+  }
+  k.reference.assign(ref->f, ref->f + ref->n);
+  k.reference_uncertainty = ref->uncertainty;
+  k.reference_source = ref->source;
+  munmap(ref, sizeof(ReferenceOut));
+}
+
+/// False (and a line saying so) where the back-end's model is not the scene's theory.
+bool converges_to_scene_theory(const Solver& s, const Case& k, const std::string& backend, const std::string& coarsest) {
+  // A back-end whose model is not the scene's theory converges elsewhere: its error here is
+  // model error, not the cost of accuracy.
+  Options o;
+  o.estimate_error = false;
+  const Result probe = s.solve(k.scene, Discretization::parse(coarsest), o);
+  if (!probe.summary.converges_to_scene_theory) {
+    fmt::print("{:<14} (its model is not the scene's {} theory: not timed to accuracy)\n", backend,
+               to_string(k.scene.theory));
+    return false;
+  }
+  return true;
+}
+
+/// One mesh's run in a child process: the median time of the repeats after a warm-up, its error.
+Measured time_mesh(const Solver& s, const Case& k, const Discretization& mesh, bool richardson, int repeats) {
+  return in_child([&] {
+    Measured out;
+    Options o;
+    o.estimate_error = richardson;
+    std::vector<double> times;
+    Result r;
+    for (int i = 0; i <= repeats; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      r = s.solve(k.scene, mesh, o);
+      if (i > 0) times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(times.begin(), times.end());
+    out.median_s = times[times.size() / 2];
+    const auto& f = richardson ? r.extrapolated.frequencies_rad_s : r.frequencies_rad_s;
+    out.ok = severity(r.summary.status) <= severity(Status::NotConverged) && !f.empty();
+    out.error = max_rel_error(f, k.reference, static_cast<std::size_t>(k.scene.request.modes));
+    out.estimate = richardson ? r.extrapolated.frequency_error : r.summary.error_estimate.frequencies;
+    return out;
+  });
+}
+
+/// One table row: the meshes coarse to fine, each target's cell the cheapest run that reached it.
+void print_ladder(const Solver& s, const Case& k, const std::string& backend, const std::vector<std::string>& meshes,
+                  bool richardson, int repeats) {
+  std::array<std::string, 4> cell;
+  cell.fill("-");
+  std::string last;
+  for (const auto& spec : meshes) {
+    const Discretization mesh = Discretization::parse(spec);
+    const Measured m = time_mesh(s, k, mesh, richardson, repeats);
+    last = fmt::format("{} {}: error {:.2e}, {:.3g} s, {:.0f} MB{}", spec, richardson ? "richardson" : "mesh", m.error,
+                       m.median_s, m.peak_mb, m.ok ? "" : " (failed or not extrapolated)");
+    if (m.ok)
+      for (std::size_t t = 0; t < kTargets.size(); ++t)
+        if (cell[t] == "-" && m.error <= kTargets[t] && kTargets[t] >= 10 * k.reference_uncertainty)
+          cell[t] = fmt::format("{:.3g} s ({}, {:.0f} MB)", m.median_s, spec, m.peak_mb);
+    if ((m.ok && m.error <= kTargets.back()) || !(m.median_s < 8.0)) break;
+  }
+  for (std::size_t t = 0; t < kTargets.size(); ++t)
+    if (kTargets[t] < 10 * k.reference_uncertainty) cell[t] = "(reference too coarse)";
+  fmt::print("{:<14} {:<11} {:>26} {:>26} {:>26} {:>26}\n", backend, richardson ? "richardson" : "mesh", cell[0], cell[1],
+             cell[2], cell[3]);
+  fmt::print("{:<26} finest tried: {}\n", "", last);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  const std::string only = argc > 2 ? argv[2] : "";
+  const Registry reg = make_default_registry();
+  std::vector<Case> cases = make_cases(MODALBENCH_SCENES_DIR);
 
   fmt::print("Time to accuracy: largest relative error of the first modes against the reference; each entry is the\n"
              "cheapest run reaching the target: median wall time of {} repeat(s) after a warm-up (mesh, peak resident MB).\n"
@@ -150,112 +269,17 @@ int main(int argc, char** argv) {
              repeats);
   for (auto& k : cases) {
     if (!only.empty() && k.label.find(only) == std::string::npos) continue;
-    // The reference, in a child process too: the parent stays small, so that every run's child
-    // (a fork of it) starts from the same few MB and its peak is its own.
-    struct ReferenceOut {
-      int n = 0;
-      double f[64] = {};
-      double uncertainty = 0;
-      char source[512] = {};
-    };
-    auto* ref = static_cast<ReferenceOut*>(
-        mmap(nullptr, sizeof(ReferenceOut), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0));
-    new (ref) ReferenceOut{};
-    std::fflush(stdout);
-    if (const pid_t pid = fork(); pid == 0) {
-      std::vector<double> values;
-      double uncertainty = 0;
-      std::string source;
-      const Solver& exact = reg.get("exact");
-      if (exact.supports(k.scene).modes) {
-        const Result r = exact.solve(k.scene, {}, Options{});
-        if (r.ok()) {
-          values = r.frequencies_rad_s;
-          source = "exact";
-        }
-      }
-      if (values.empty()) {
-        // No exact solution: the extrapolated values with the smallest estimate of their own error.
-        for (const auto& [backend, spec] : {std::pair<std::string, std::string>{"dtfm", "64"}, {"rfem", "256x256"}}) {
-          const Result r = reg.get(backend).solve(k.scene, Discretization::parse(spec), Options{});
-          const Extrapolation& x = r.extrapolated;
-          if (x.frequencies_rad_s.empty() || !(values.empty() || x.frequency_error < uncertainty)) continue;
-          values = x.frequencies_rad_s;
-          uncertainty = x.frequency_error;
-          source = fmt::format("{} {}, Richardson of meshes {} (its estimate {:.1e}, {})", backend, spec, x.meshes,
-                               x.frequency_error, to_string(r.summary.status));
-        }
-      }
-      ref->n = static_cast<int>(std::min<std::size_t>(values.size(), 64));
-      for (int i = 0; i < ref->n; ++i) ref->f[i] = values[static_cast<std::size_t>(i)];
-      ref->uncertainty = uncertainty;
-      std::snprintf(ref->source, sizeof ref->source, "%s", source.c_str());
-      _exit(0);
-    } else {
-      int status = 0;
-      waitpid(pid, &status, 0);
-    }
-    k.reference.assign(ref->f, ref->f + ref->n);
-    k.reference_uncertainty = ref->uncertainty;
-    k.reference_source = ref->source;
-    munmap(ref, sizeof(ReferenceOut));
+    find_reference(reg, k);
     fmt::print("\n## {} ({} modes; reference: {})\n", k.label, k.scene.request.modes,
                k.reference_source.empty() ? "none" : k.reference_source);
     if (k.reference.empty()) continue;
     fmt::print("{:<14} {:<11} {:>26} {:>26} {:>26} {:>26}\n", "back-end", "way", "1e-2", "1e-3", "1e-4", "1e-5");
     for (const auto& [backend, meshes] : k.meshes) {
       const Solver& s = reg.get(backend);
-      {
-        // A back-end whose model is not the scene's theory converges elsewhere: its error here is
-        // model error, not the cost of accuracy.
-        Options o;
-        o.estimate_error = false;
-        const Result probe = s.solve(k.scene, Discretization::parse(meshes.front()), o);
-        if (!probe.summary.converges_to_scene_theory) {
-          fmt::print("{:<14} (its model is not the scene's {} theory: not timed to accuracy)\n", backend,
-                     to_string(k.scene.theory));
-          continue;
-        }
-      }
+      if (!converges_to_scene_theory(s, k, backend, meshes.front())) continue;
       for (const bool richardson : {false, true}) {
         if (richardson && meshes.size() == 1) continue;  // a mesh with no coarser ones (dtfm's exact one-prism beam)
-        std::array<std::string, 4> cell;
-        cell.fill("-");
-        std::string last;
-        for (const auto& spec : meshes) {
-          const Discretization mesh = Discretization::parse(spec);
-          const Measured m = in_child([&] {
-            Measured out;
-            Options o;
-            o.estimate_error = richardson;
-            std::vector<double> times;
-            Result r;
-            for (int i = 0; i <= repeats; ++i) {
-              const auto t0 = std::chrono::steady_clock::now();
-              r = s.solve(k.scene, mesh, o);
-              if (i > 0) times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-            }
-            std::sort(times.begin(), times.end());
-            out.median_s = times[times.size() / 2];
-            const auto& f = richardson ? r.extrapolated.frequencies_rad_s : r.frequencies_rad_s;
-            out.ok = severity(r.summary.status) <= severity(Status::NotConverged) && !f.empty();
-            out.error = max_rel_error(f, k.reference, static_cast<std::size_t>(k.scene.request.modes));
-            out.estimate = richardson ? r.extrapolated.frequency_error : r.summary.error_estimate.frequencies;
-            return out;
-          });
-          last = fmt::format("{} {}: error {:.2e}, {:.3g} s, {:.0f} MB{}", spec, richardson ? "richardson" : "mesh", m.error,
-                             m.median_s, m.peak_mb, m.ok ? "" : " (failed or not extrapolated)");
-          if (m.ok)
-            for (std::size_t t = 0; t < kTargets.size(); ++t)
-              if (cell[t] == "-" && m.error <= kTargets[t] && kTargets[t] >= 10 * k.reference_uncertainty)
-                cell[t] = fmt::format("{:.3g} s ({}, {:.0f} MB)", m.median_s, spec, m.peak_mb);
-          if ((m.ok && m.error <= kTargets.back()) || !(m.median_s < 8.0)) break;
-        }
-        for (std::size_t t = 0; t < kTargets.size(); ++t)
-          if (kTargets[t] < 10 * k.reference_uncertainty) cell[t] = "(reference too coarse)";
-        fmt::print("{:<14} {:<11} {:>26} {:>26} {:>26} {:>26}\n", backend, richardson ? "richardson" : "mesh", cell[0], cell[1],
-                   cell[2], cell[3]);
-        fmt::print("{:<26} finest tried: {}\n", "", last);
+        print_ladder(s, k, backend, meshes, richardson, repeats);
       }
     }
   }
