@@ -6,6 +6,7 @@ Usage: tools/function_lengths.py [--over N] [DIR ...]   (default: every source f
 Exit status 1 where a function exceeds --fail-over (the project's limit: 120)."""
 import argparse
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -36,7 +37,7 @@ def main():
     dirs = a.dirs or [str(root / d) for d in SOURCE_DIRS if (root / d).is_dir()]
     rows = sorted((f for f in functions(dirs) if f[0] > a.over), reverse=True)
     for n, name, where in rows:
-        print(f"{n:5d}  {name:45s} {pathlib.Path(where).relative_to(root) if where.startswith('/') else where}")
+        print(f"{n:5d}  {name:45s} {os.path.relpath(where, root) if where.startswith('/') else where}")
     worst = rows[0][0] if rows else 0
     return 1 if a.fail_over and worst > a.fail_over else 0
 
