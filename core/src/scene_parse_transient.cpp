@@ -92,7 +92,7 @@ void read_transient(const Reader& r, const toml::node& n, Scene& s) {
   if (const toml::node* mo = t->get("moments")) {
     const auto* b = mo->as_boolean();
     if (!b) r.fail(where + ".moments", "must be true or false");
-    tr.moments = b->get();
+    tr.moments = b->get() ? TransientRequest::Moments::Asked : TransientRequest::Moments::Off;
   }
   s.request.transient = tr;
 }

@@ -222,10 +222,14 @@ struct TransientRequest {
   /// Mode acceleration: the truncated modes' static share (the statics minus the used modes'
   /// static part) added quasi-statically.
   bool static_correction = true;
-  /// A beam's bending moment histories My at the probes (where the back-end's modes carry moments),
-  /// their truncation estimate driving the modes used and the status like w's. Off: w and the
-  /// rotations only (a moment series at a suddenly applied point load converges only like 1 / modes).
-  bool moments = true;
+  /// A beam's bending moment histories My at the probes, where the back-end's modes carry moments.
+  /// Added (the default, no `moments` key): given with their own truncation estimate and, where it
+  /// exceeds the tolerance, a warning; they neither drive the modes used nor set the status (after
+  /// a suddenly applied point load a moment series converges only like 1 / modes). Asked
+  /// (`moments = true`): judged like w, their estimate driving the modes and the status. Off
+  /// (`moments = false`): w and the rotations only.
+  enum class Moments { Added, Asked, Off };
+  Moments moments = Moments::Added;
 };
 std::string to_string(TransientRequest::Load);  ///< step, impulse, ramp, harmonic, table
 

@@ -312,7 +312,8 @@ Scene modal_scene(const Scene& scene, int modes, const std::vector<LoadPoint>& l
   ShapeRequest sr;
   sr.points = scene.request.probes;
   for (const LoadPoint& p : loads) sr.points.push_back(p.at);
-  sr.moments = scene.is_beam() && scene.request.transient && scene.request.transient->moments;
+  sr.moments = scene.is_beam() && scene.request.transient &&
+               scene.request.transient->moments != TransientRequest::Moments::Off;
   sub.request.modes = modes + 1;
   sub.request.shapes = sr;
   sub.request.probes.clear();
@@ -392,7 +393,10 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
     peaks_and_estimate(cx, rd, corr, mcorr, rd.moment_scale);
     const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
     const bool complete = rd.basis.used == rd.basis.computed;
-    const bool met = !(rd.estimate > scene.request.tolerance) && !(rd.moment_estimate > scene.request.tolerance);
+    // The moments drive the modes only where they were asked for (TransientRequest::Moments).
+    const bool moments_judged = rq.moments == TransientRequest::Moments::Asked;
+    const bool met = !(rd.estimate > scene.request.tolerance) &&
+                     !(moments_judged && rd.moment_estimate > scene.request.tolerance);
     if (met || complete || round == 4 || 3.0 * took > time_left_s) {
       histories(cx, rd.basis, corr, rd.basis.m.empty() ? nullptr : &mcorr, rd.out);
       break;
@@ -422,12 +426,18 @@ double solve_transient(const Scene& scene, const ModalSolve& solve, const ModalE
     sum.raise(Status::NotConverged,
               fmt::format("transient: truncation error estimate {:.2g} with {} modes exceeds the tolerance {:.2g}",
                           rd.estimate, out.modes_used, scene.request.tolerance));
-  if (!rd.basis.m.empty() && rd.moment_estimate > scene.request.tolerance)
-    sum.raise(Status::NotConverged,
-              fmt::format("transient: the moment histories' truncation estimate {:.2g} with {} modes exceeds the "
-                          "tolerance {:.2g} (after a suddenly applied point load a moment series converges only like "
-                          "1 / modes; request.transient.moments = false keeps w and the rotations)",
-                          rd.moment_estimate, out.modes_used, scene.request.tolerance));
+  if (!rd.basis.m.empty() && rd.moment_estimate > scene.request.tolerance) {
+    // Asked for, they are judged; added by default, their estimate is said, not held against w.
+    const std::string what = fmt::format(
+        "transient: the moment histories' truncation estimate {:.2g} with {} modes exceeds the tolerance {:.2g} (after a "
+        "suddenly applied point load a moment series converges only like 1 / modes)",
+        rd.moment_estimate, out.modes_used, scene.request.tolerance);
+    if (rq.moments == TransientRequest::Moments::Asked)
+      sum.raise(Status::NotConverged, what + "; request.transient.moments = false keeps w and the rotations");
+    else
+      sum.warnings.push_back(what + ": they were added by default and do not set the status (request.transient."
+                                    "moments = true judges them, false leaves them out)");
+  }
   result.transient = std::move(out);
   sum.timings_s.transient = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return planned;
