@@ -405,9 +405,16 @@ Modes solve_modes_once(const Model& model, const System& sys, const ModeOptions&
   }
   // Dense when small; also when most of a moderate spectrum is wanted (Lanczos would need a
   // subspace close to the whole space). Its cost grows like n (m + r)^2, hence the bounds on n.
-  const bool dense = opt.method == EigenMethod::Dense ||
+  // Every flexible mode (a time history's doubling ran past the mesh's unknowns) is the dense
+  // solver's whatever the size: shift-invert Lanczos needs fewer modes than unknowns.
+  const bool all_flexible = kf > 0 && kf >= n_eff;
+  const bool dense = opt.method == EigenMethod::Dense || all_flexible ||
                      (opt.method == EigenMethod::Auto &&
                       (n <= opt.dense_limit || (3 * kf >= n_eff && n <= 4 * opt.dense_limit) || n_eff < 40));
+  if (all_flexible && opt.method == EigenMethod::ShiftInvert)
+    out.fallbacks.push_back(fmt::format("eigen: shift-invert asked, but all {} flexible modes are wanted (Lanczos needs "
+                                        "fewer modes than unknowns): the dense solver instead",
+                                        n_eff));
   ModeSolve ms{model, sys, opt, R, n_eff, kf, out, {}};
   Flexible flex;
   if (kf > 0 && dense) flex = dense_modes(ms);
