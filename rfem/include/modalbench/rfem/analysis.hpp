@@ -104,6 +104,10 @@ struct SupportForces {
   /// || B'(f - K q) - (links' mu + holds' lambda) || / || B' f ||: how far the multipliers found
   /// balance the unreduced model (rounding; larger where the rigid components are redundant).
   double residual = 0;
+  /// The rounding floor of that balance, on the same scale: eps times || |B'| (|K| |q| + |f|) ||, the
+  /// size of the terms whose difference B'(f - K q) is (huge where stiff springs carry small motions:
+  /// a slender Timoshenko beam's shear springs). A residual within a small multiple of it is rounding.
+  double rounding = 0;
 };
 /// The support reactions of the static solution z under the point actions (`actions`, as given to
 /// point_loads): finite components are -k times the motion of their point; held ones are the multipliers
