@@ -91,18 +91,20 @@ Eigen::MatrixXd free_rigid_motions(const RegularBeam& b, const std::vector<Nodal
   return lu.kernel().cols() > 0 && lu.rank() < 2 ? Eigen::MatrixXd(lu.kernel()) : Eigen::MatrixXd(2, 0);
 }
 
-/// K - lambda M of the assembled model with the attachments, in element units; `mass_part`
-/// receives the lambda M part alone (for the residual's norm).
-assembled::Banded<double> assembled_with(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at,
-                                         double lambda, assembled::Banded<double>* mass_part = nullptr) {
+/// K - lambda M of the assembled model with the attachments, in element units and in S (double, or
+/// binary128 for the count that double cannot resolve); `mass_part` receives the lambda M part
+/// alone (for the residual's norm).
+template <class S>
+assembled::Banded<S> assembled_with(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at, S lambda,
+                                    assembled::Banded<S>* mass_part = nullptr) {
   const RegularBeam free_ends = [&] {
     RegularBeam f = b;
     f.k0 = f.r0 = f.kL = f.rL = 0;
     return f;
   }();
-  assembled::Banded<double> A = assembled::dynamic_matrix<double>(free_ends, mass, lambda * assembled::omega_scale<double>(b, mass));
+  assembled::Banded<S> A = assembled::dynamic_matrix<S>(free_ends, mass, lambda * assembled::omega_scale<S>(b, mass));
   if (mass_part) {
-    assembled::Banded<double> K0 = assembled::dynamic_matrix<double>(free_ends, mass, 0.0);
+    assembled::Banded<S> K0 = assembled::dynamic_matrix<S>(free_ends, mass, S(0));
     *mass_part = A;
     for (long i = 0; i < A.n; ++i)
       for (int j = 0; j < 4; ++j) mass_part->a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] -=
@@ -117,11 +119,26 @@ assembled::Banded<double> assembled_with(const RegularBeam& b, MassModel mass, c
         held.push_back(dof);
         continue;
       }
-      A.add(dof, dof, t.k[i][static_cast<std::size_t>(d)] - lambda * t.m[i][static_cast<std::size_t>(d)]);
-      if (mass_part) mass_part->add(dof, dof, -lambda * t.m[i][static_cast<std::size_t>(d)]);
+      A.add(dof, dof, S(t.k[i][static_cast<std::size_t>(d)]) - lambda * S(t.m[i][static_cast<std::size_t>(d)]));
+      if (mass_part) mass_part->add(dof, dof, -lambda * S(t.m[i][static_cast<std::size_t>(d)]));
     }
   for (long dof : held) A.hold(dof);
   return A;
+}
+
+/// The assembled model's Sturm count in S. An exactly zero pivot (integer element matrices at a
+/// round lambda): the count just above.
+template <class S>
+long assembled_count(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at, S lambda) {
+  for (int e = 90;; e -= 20) {
+    assembled::Banded<S> A = assembled_with<S>(b, mass, at, lambda);
+    try {
+      return A.factor();
+    } catch (const std::runtime_error&) {
+      if (e < 50) throw;
+      lambda = lambda + lambda * S(std::ldexp(1.0, -e));
+    }
+  }
 }
 
 }  // namespace
@@ -219,16 +236,14 @@ std::vector<ModeShape> rigid_shapes_attached(const RegularBeam& b, const std::ve
 }
 
 long assembled_count_attached(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at, double lambda) {
-  // An exactly zero pivot (integer element matrices at a round lambda): the count just above.
-  for (int e = 90;; e -= 20) {
-    assembled::Banded<double> A = assembled_with(b, mass, at, lambda);
-    try {
-      return A.factor();
-    } catch (const std::runtime_error&) {
-      if (e < 50) throw;
-      lambda += lambda * std::ldexp(1.0, -e);
-    }
-  }
+  return assembled_count<double>(b, mass, at, lambda);
+}
+
+bool assembled_count_confirms(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at,
+                              double lambda, long index) {
+  const __float128 lq = static_cast<__float128>(lambda), tau = static_cast<__float128>(1e-8);
+  return assembled_count<__float128>(b, mass, at, lq * (1 - tau)) <= index &&
+         assembled_count<__float128>(b, mass, at, lq * (1 + tau)) >= index + 1;
 }
 
 ModeShape mode_shape_attached(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at,
@@ -240,7 +255,7 @@ ModeShape mode_shape_attached(const RegularBeam& b, MassModel mass, const std::v
   std::vector<double> v(static_cast<std::size_t>(n));
   for (long i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i) + 0.3);
   for (double shift : {1e-10, 1e-8, 1e-6}) {
-    assembled::Banded<double> A = assembled_with(b, mass, at, lambda * (1.0 + shift));
+    assembled::Banded<double> A = assembled_with<double>(b, mass, at, lambda * (1.0 + shift));
     try {
       A.factor();
     } catch (const std::runtime_error&) {
@@ -257,8 +272,8 @@ ModeShape mode_shape_attached(const RegularBeam& b, MassModel mass, const std::v
   }
   // Nodal values, held DOFs exactly 0; scaled to max |w| (or max |a slope|) = 1.
   assembled::Banded<double> Mp(0);
-  const assembled::Banded<double> A = assembled_with(b, mass, at, lambda, &Mp);
-  const assembled::Banded<double> K0 = assembled_with(b, mass, at, 0.0);
+  const assembled::Banded<double> A = assembled_with<double>(b, mass, at, lambda, &Mp);
+  const assembled::Banded<double> K0 = assembled_with<double>(b, mass, at, 0.0);
   const NodeTerms t = node_terms(b, at);
   for (std::size_t i = 0; i < t.node.size(); ++i)
     for (int d = 0; d < 2; ++d)

@@ -83,6 +83,11 @@ Spectrum natural_frequencies_attached(const RegularBeam& b, MassModel mass, cons
 std::vector<ModeShape> rigid_shapes_attached(const RegularBeam& b, const std::vector<NodalAttachment>& at);
 /// The same count by the assembled banded model's Sturm sequence (O(R)): an independent check.
 long assembled_count_attached(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at, double lambda);
+/// Whether the same count in binary128 confirms lambda as the frequency number index + 1 (none
+/// below lambda (1 - 1e-8), at least index + 1 below lambda (1 + 1e-8)): where double rounding
+/// (the assembled model's condition grows like R^4) cannot resolve that window. O(R) software floats.
+bool assembled_count_confirms(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at,
+                              double lambda, long index);
 /// Number of natural frequencies with omega^2 < lambda (the sub-chain count).
 long count_below_attached(const RegularBeam& b, MassModel mass, const std::vector<NodalAttachment>& at, double lambda);
 /// The nodal mode shape at a natural frequency (inverse iteration on the assembled model) and its
