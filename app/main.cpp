@@ -390,7 +390,7 @@ struct CompareArgs {
   std::vector<std::string> scenes;
   std::string out_dir = "report", reference;
   double budget_s = 30.0;
-  bool quick = false;
+  bool quick = false, keep_calculix_files = false;
 };
 
 CLI::App* add_compare(CLI::App& app, CompareArgs& a) {
@@ -410,6 +410,8 @@ CLI::App* add_compare(CLI::App& app, CompareArgs& a) {
   cmp->add_flag("--quick", a.quick, "one timing repeat and at most three meshes per back-end");
   cmp->add_option("--reference", a.reference, "add an external 3D reference: calculix (needs ccx)")
       ->check(CLI::IsMember({"calculix"}));
+  cmp->add_flag("--keep-calculix-files", a.keep_calculix_files,
+                "keep ccx's working files (.dat, .frd, .sta, ...) beside the decks (default: the decks and the modes read)");
   return cmp;
 }
 
@@ -426,8 +428,9 @@ void add_calculix(const CompareArgs& a, mb::CompareOptions& opt, mb::ReportOptio
                          "run once per mesh (no repeats), its modes labelled from their shapes.");
   const std::string work = (std::filesystem::path(a.out_dir) / "calculix").string();
   const double budget_s = a.budget_s;
-  opt.extra_references.push_back([work, budget_s](const mb::Scene& sc, std::ostream* progress) {
-    return mb::calculix_runs(sc, "ccx", work, budget_s, progress);
+  const bool keep = a.keep_calculix_files;
+  opt.extra_references.push_back([work, budget_s, keep](const mb::Scene& sc, std::ostream* progress) {
+    return mb::calculix_runs(sc, "ccx", work, budget_s, progress, keep);
   });
 }
 

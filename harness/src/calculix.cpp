@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -129,8 +130,27 @@ std::vector<ModeFamily> families_from_shares(const Scene& s, const std::vector<s
   return fam;
 }
 
+/// What one ccx run read: NAME.modes.csv beside its deck, so that the work folder keeps the input
+/// and the numbers taken from it.
+void write_modes_csv(const std::string& work_dir, const std::string& name, const Result& r) {
+  std::string csv = "mode,omega_rad_s,frequency_hz,family\n";
+  for (std::size_t m = 0; m < r.frequencies_rad_s.size(); ++m)
+    csv += fmt::format("{},{:.17g},{:.17g},{}\n", m + 1, r.frequencies_rad_s[m], r.frequencies_rad_s[m] / (2 * M_PI),
+                       to_string(r.mode_families[m]));
+  write_text_file((fs::path(work_dir) / (name + ".modes.csv")).string(), csv);
+}
+
+/// Removes ccx's working files of a run read successfully (everything of NAME but the deck and the
+/// modes read; spooles.out, the solver's own log, too).
+void remove_work_files(const std::string& work_dir, const std::string& name) {
+  std::error_code ec;
+  for (const char* ext : {".dat", ".frd", ".sta", ".cvg", ".12d", ".log"})
+    fs::remove(fs::path(work_dir) / (name + ext), ec);
+  fs::remove(fs::path(work_dir) / "spooles.out", ec);
+}
+
 RunRecord run_deck(const Scene& s, RunRecord rec, const std::string& name, const std::string& deck, int n_nodes,
-                   const std::string& exe, const std::string& work_dir, const SharesOf& shares) {
+                   const std::string& exe, const std::string& work_dir, const SharesOf& shares, bool keep_work_files) {
   rec.repeats = 1;
   Result& r = rec.result;
   make_output_dir(work_dir);
@@ -159,6 +179,9 @@ RunRecord run_deck(const Scene& s, RunRecord rec, const std::string& name, const
   r.mode_families = families_from_shares(s, shares(shapes), omega);
   r.frequencies_rad_s = omega;
   r.summary.set_diagnostic("ccx_modes_read", static_cast<double>(omega.size()));
+  dat.close();
+  write_modes_csv(work_dir, name, r);
+  if (!keep_work_files) remove_work_files(work_dir, name);
   return rec;
 }
 
@@ -364,7 +387,8 @@ std::string brick_input(const Scene& s, const SolidMesh& m, const Grid& g, long&
 
 }  // namespace
 
-RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& exe, const std::string& work_dir) {
+RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& exe, const std::string& work_dir,
+                       bool keep_work_files) {
   RunRecord rec;
   rec.backend = "calculix";
   rec.mesh.counts = {m.nx, m.ny, m.nz};
@@ -380,11 +404,11 @@ RunRecord calculix_run(const Scene& s, const SolidMesh& m, const std::string& ex
   const std::string deck = brick_input(s, m, g, held);
   rec.result.summary.unknowns = 3L * n_nodes - held;
   return run_deck(s, std::move(rec), deck_name(s, fmt::format("{}x{}x{}", m.nx, m.ny, m.nz)), deck, n_nodes, exe, work_dir,
-                  [&](const auto& shapes) { return brick_shares(s, g, shapes); });
+                  [&](const auto& shapes) { return brick_shares(s, g, shapes); }, keep_work_files);
 }
 
 std::vector<RunRecord> calculix_runs(const Scene& s, const std::string& exe, const std::string& work_dir, double budget_s,
-                                     std::ostream* progress) {
+                                     std::ostream* progress, bool keep_work_files) {
   std::vector<RunRecord> runs;
   if (s.request.modes <= 0) return runs;
   // One ladder under the budget: cost grows roughly with DOFs^1.5-2 for the sparse direct solve,
@@ -412,14 +436,14 @@ std::vector<RunRecord> calculix_runs(const Scene& s, const std::string& exe, con
     const auto meshes = calculix_ladder(s);
     std::vector<std::string> specs;
     for (const auto& m : meshes) specs.push_back(fmt::format("{}x{}x{}", m.nx, m.ny, m.nz));
-    ladder("calculix", specs, [&](std::size_t k) { return calculix_run(s, meshes[k], exe, work_dir); });
+    ladder("calculix", specs, [&](std::size_t k) { return calculix_run(s, meshes[k], exe, work_dir, keep_work_files); });
   }
   if (calculix_peer_unsupported_reason(s).empty()) {
     const auto meshes = calculix_peer_ladder(s);
     std::vector<std::string> specs;
     for (const auto& m : meshes) specs.push_back(m.spec());
     ladder("calculix-" + calculix_peer_element(s), specs,
-           [&](std::size_t k) { return calculix_peer_run(s, meshes[k], exe, work_dir); });
+           [&](std::size_t k) { return calculix_peer_run(s, meshes[k], exe, work_dir, keep_work_files); });
   }
   return runs;
 }

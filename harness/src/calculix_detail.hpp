@@ -25,9 +25,11 @@ std::vector<ModeFamily> families_from_shares(const Scene& s, const std::vector<s
 using SharesOf =
     std::function<std::vector<std::array<double, 4>>(const std::vector<std::vector<std::array<double, 3>>>&)>;
 /// Writes `deck` as NAME.inp into `work_dir`, runs ccx on it (one thread, timed) and reads the
-/// result into `rec` (backend, mesh and method set by the caller); failures come back marked.
+/// result into `rec` (backend, mesh and method set by the caller); failures come back marked. Once
+/// read, the frequencies go to NAME.modes.csv and ccx's working files are removed, unless
+/// `keep_work_files` (a failed run keeps them: its log says why).
 RunRecord run_deck(const Scene& s, RunRecord rec, const std::string& name, const std::string& deck, int n_nodes,
-                   const std::string& exe, const std::string& work_dir, const SharesOf& shares);
+                   const std::string& exe, const std::string& work_dir, const SharesOf& shares, bool keep_work_files);
 /// A file-name-safe deck name: the scene's name and `suffix`.
 std::string deck_name(const Scene& s, const std::string& suffix);
 

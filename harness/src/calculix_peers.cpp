@@ -173,7 +173,8 @@ std::vector<Discretization> calculix_peer_ladder(const Scene& s) {
   return l;
 }
 
-RunRecord calculix_peer_run(const Scene& s, const Discretization& mesh, const std::string& exe, const std::string& work_dir) {
+RunRecord calculix_peer_run(const Scene& s, const Discretization& mesh, const std::string& exe, const std::string& work_dir,
+                            bool keep_work_files) {
   RunRecord rec;
   rec.backend = "calculix-" + calculix_peer_element(s);
   rec.mesh = mesh;
@@ -195,7 +196,7 @@ RunRecord calculix_peer_run(const Scene& s, const Discretization& mesh, const st
   const int n_nodes = static_cast<int>(g.xy.size());
   sum.unknowns = 6L * n_nodes - held;  // nodal DOFs of the shell or beam model, before ccx expands it
   return run_deck(s, std::move(rec), deck_name(s, calculix_peer_element(s) + "_" + mesh.spec()), deck, n_nodes, exe,
-                  work_dir, [&](const auto& shapes) { return peer_shares(s, shapes); });
+                  work_dir, [&](const auto& shapes) { return peer_shares(s, shapes); }, keep_work_files);
 }
 
 }  // namespace modalbench

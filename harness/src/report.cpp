@@ -142,7 +142,8 @@ void open_html(Doc& doc, const std::string& title) {
       "</title><style>body{font-family:Helvetica,Arial,sans-serif;max-width:78em;margin:1em auto;padding:0 1em;color:#222}"
       "table{border-collapse:collapse;margin:0.5em 0 1.2em}td,th{border:1px solid #bbb;padding:2px 8px;text-align:right;"
       "font-variant-numeric:tabular-nums}th{background:#eee}td.l,th.l{text-align:left}figure{margin:0.5em 0}figure img{width:100%;max-width:760px}"
-      "figcaption{font-size:90%;color:#555}h2{border-top:2px solid #888;padding-top:0.5em;margin-top:2em}</style>"
+      "figcaption{font-size:90%;color:#555}h2{border-top:2px solid #888;padding-top:0.5em;margin-top:2em}"
+      "table.mac td{min-width:2.6em;text-align:center;font-size:85%}</style>"
       "</head><body>\n";
 }
 

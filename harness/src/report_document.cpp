@@ -152,6 +152,41 @@ void Doc::figure(const std::string& svg_file, const std::string& svg, const std:
       esc(caption), base64(svg), esc(caption));
 }
 
+void Doc::figure_html(const std::string& svg_file, const std::string& html_body, const std::string& caption) {
+  md += fmt::format("![{}]({})\n\n", caption, svg_file);
+  html += fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", html_body, esc(caption));
+}
+
+std::string mac_table_html(const std::vector<std::vector<double>>& mac, const std::string& row_label,
+                           const std::string& column_label) {
+  // The palette of the SVG heat maps: white, #9ecae1 at 0.5, #3182bd at 0.9, #08306b at 1.
+  const auto shade = [](double v) {
+    struct Stop {
+      double at, r, g, b;
+    };
+    static const Stop stops[] = {{0, 255, 255, 255}, {0.5, 158, 202, 225}, {0.9, 49, 130, 189}, {1, 8, 48, 107}};
+    v = std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0;
+    std::size_t k = 1;
+    while (k < 3 && v > stops[k].at) ++k;
+    const Stop &a = stops[k - 1], &b = stops[k];
+    const double t = (v - a.at) / (b.at - a.at);
+    return fmt::format("#{:02x}{:02x}{:02x}", static_cast<int>(std::lround(a.r + t * (b.r - a.r))),
+                       static_cast<int>(std::lround(a.g + t * (b.g - a.g))),
+                       static_cast<int>(std::lround(a.b + t * (b.b - a.b))));
+  };
+  std::string h = fmt::format("<table class=\"mac\"><tr><th class=\"l\">{} \\ {}</th>", esc(row_label), esc(column_label));
+  for (std::size_t j = 0; j < (mac.empty() ? 0 : mac[0].size()); ++j) h += fmt::format("<th>{}</th>", j + 1);
+  h += "</tr>";
+  for (std::size_t i = 0; i < mac.size(); ++i) {
+    h += fmt::format("<tr><th>{}</th>", i + 1);
+    for (double v : mac[i])
+      h += fmt::format("<td style=\"background:{};color:{}\">{}</td>", shade(v), std::isfinite(v) && v > 0.6 ? "#fff" : "#000",
+                       std::isfinite(v) ? fmt::format("{:.2f}", v) : "—");
+    h += "</tr>";
+  }
+  return h + "</table>";
+}
+
 std::vector<std::string> backends_of(const SceneComparison& c) {
   std::vector<std::string> names;
   for (const auto& r : c.runs)

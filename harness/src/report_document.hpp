@@ -35,7 +35,15 @@ struct Doc {
   /// The first `left` columns are text (left-aligned), the others numbers.
   void table(const std::vector<std::string>& head, const std::vector<std::vector<std::string>>& rows, std::size_t left = 1);
   void figure(const std::string& svg_file, const std::string& svg, const std::string& caption);
+  /// A figure whose HTML is the caller's (a heat map as a table: a few KB where the SVG took 100);
+  /// the Markdown links the SVG file.
+  void figure_html(const std::string& svg_file, const std::string& html_body, const std::string& caption);
 };
+
+/// A MAC matrix (rows: the reference's modes; columns: the run's) as an HTML table, each cell
+/// shaded by its value (white 0, dark blue 1) with the value printed.
+std::string mac_table_html(const std::vector<std::vector<double>>& mac, const std::string& row_label,
+                           const std::string& column_label);
 
 struct Series {
   std::string title;

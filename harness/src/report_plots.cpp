@@ -1,9 +1,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "modalbench/harness/files.hpp"
@@ -37,6 +39,45 @@ std::string method_style(const std::string& title) {
   return fmt::format("lc rgb '{}' pt {}", colours[h % 7], markers[(h / 7) % 7]);
 }
 
+/// gnuplot's SVG without what does not draw: comments, empty groups (gnuplot opens and closes one
+/// per style change) and runs of white space (a quarter to a third of the file).
+std::string minified(const std::string& svg) {
+  std::string out;
+  out.reserve(svg.size());
+  for (std::size_t i = 0; i < svg.size();) {
+    if (svg.compare(i, 4, "<!--") == 0) {
+      const std::size_t end = svg.find("-->", i + 4);
+      i = end == std::string::npos ? svg.size() : end + 3;
+    } else if (std::isspace(static_cast<unsigned char>(svg[i]))) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+      ++i;
+    } else {
+      out += svg[i++];
+    }
+  }
+  const std::regex empty_group("<g [^<>]*> ?</g>");
+  for (std::string before; before != out;) {
+    before = out;
+    out = std::regex_replace(out, empty_group, "");
+  }
+  return std::regex_replace(out, std::regex("> <(?!/?t)"), "><");
+}
+
+/// The SVG gnuplot wrote to `svg` (minified, and written back so), or "" with the reason recorded.
+std::string read_plot(Context& ctx, const std::string& name, const fs::path& svg, const std::string& gnuplot_out) {
+  std::ifstream in(svg);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (ss.str().find("<svg") == std::string::npos) {
+    ctx.problems.push_back(fmt::format("plot {} not made (gnuplot: {})", name,
+                                       gnuplot_out.empty() ? "no output" : gnuplot_out.substr(0, 200)));
+    return "";
+  }
+  std::string text = minified(ss.str());
+  write_text_file(svg.string(), text);
+  return text;
+}
+
 }  // namespace
 
 std::string plot(Context& ctx, const std::string& name, const std::string& setup, const std::vector<Series>& series) {
@@ -65,15 +106,7 @@ std::string plot(Context& ctx, const std::string& name, const std::string& setup
   const fs::path gp = pdir / (name + ".gp");
   write_text_file(gp.string(), cmd);
   const std::string out = command_output(ctx.options.gnuplot + " '" + gp.string() + "'");
-  std::ifstream in(pdir / (name + ".svg"));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (ss.str().find("<svg") == std::string::npos) {
-    ctx.problems.push_back(
-        fmt::format("plot {} not made (gnuplot: {})", name, out.empty() ? "no output" : out.substr(0, 200)));
-    return "";
-  }
-  return ss.str();
+  return read_plot(ctx, name, pdir / (name + ".svg"), out);
 }
 
 std::string data_path(const Context& ctx, const std::string& file) {
@@ -90,15 +123,7 @@ std::string plot_script(Context& ctx, const std::string& name, const std::string
                                            "'white'\nset output '{}'\n{}\n",
                                            size, svg.string(), body));
   const std::string out = command_output(ctx.options.gnuplot + " '" + gp.string() + "'");
-  std::ifstream in(svg);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (ss.str().find("<svg") == std::string::npos) {
-    ctx.problems.push_back(
-        fmt::format("plot {} not made (gnuplot: {})", name, out.empty() ? "no output" : out.substr(0, 200)));
-    return "";
-  }
-  return ss.str();
+  return read_plot(ctx, name, svg, out);
 }
 
 }  // namespace modalbench::report_detail

@@ -64,11 +64,13 @@ void mac_heat_maps(Doc& doc, const SceneComparison& c, Context& ctx, const std::
         "plot '{}' using 1:2:3 with image pixels, '' using 1:2:(sprintf('%.2f', $3)) with labels font ',9'\n",
         run_label(*r), c.reference.source, r->backend, m.empty() ? 1.5 : static_cast<double>(m[0].size()) + 0.5,
         static_cast<double>(m.size()) + 0.5, data_path(ctx, name + ".dat"));
+    // The Markdown links the SVG; the page shows the matrix as a shaded table (about 2 % of its size).
     if (auto svg = plot_script(ctx, name, body, {{name + ".dat", data}}, "560,480"); !svg.empty())
-      doc.figure("plots/" + name + ".svg", svg,
-                 fmt::format("MAC matrix of {} against the reference ({}): the diagonal pairs the modes; off-diagonal "
-                             "weight means shapes mix",
-                             run_label(*r), c.reference.source));
+      doc.figure_html("plots/" + name + ".svg",
+                      mac_table_html(m, "reference (" + c.reference.source + ") mode", run_label(*r) + " mode"),
+                      fmt::format("MAC matrix of {} against the reference ({}): the diagonal pairs the modes; off-diagonal "
+                                  "weight means shapes mix",
+                                  run_label(*r), c.reference.source));
   }
 }
 

@@ -3,7 +3,11 @@
 #define BOOST_TEST_MODULE calculix
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "modalbench/harness/calculix.hpp"
 #include "temp_dir.hpp"
@@ -80,6 +84,24 @@ BOOST_AUTO_TEST_CASE(b32r_beams_label_their_modes, *boost::unit_test::preconditi
   }
   BOOST_TEST(torsion >= 1);
   BOOST_TEST(axial >= 1);
+  // What stays in the work folder (issue 54: a report held 230 MB of ccx's working files): the
+  // deck and the modes read, one line per mode, the first the first x-z bending frequency's pair.
+  namespace fs = std::filesystem;
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir.str())) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  BOOST_TEST((left == std::vector<std::string>{"paper_fixed_beam_B32R_64.inp", "paper_fixed_beam_B32R_64.modes.csv"}),
+             left.size() << " files");
+  std::ifstream csv(fs::path(dir.str()) / "paper_fixed_beam_B32R_64.modes.csv");
+  std::string line;
+  long lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  BOOST_TEST(lines == static_cast<long>(r.result.frequencies_rad_s.size()) + 1);
+  // Kept on request.
+  const modalbench_test::TempDir kept("modalbench_test_ccx_b32r_kept");
+  BOOST_TEST_REQUIRE(!calculix_peer_run(s, Discretization::parse("16"), "ccx", kept.str(), true).failed());
+  BOOST_TEST(fs::exists(fs::path(kept.str()) / "paper_fixed_beam_B32R_16.dat"));
+  BOOST_TEST(fs::exists(fs::path(kept.str()) / "paper_fixed_beam_B32R_16.frd"));
 }
 
 // S8R shells on the paper's plate: no membrane mode among the bending ones (the in-plane

@@ -32,13 +32,16 @@ std::string calculix_version(const std::string& exe);
 std::string calculix_unsupported_reason(const Scene& scene);
 /// Meshes from coarse to fine for the scene.
 std::vector<SolidMesh> calculix_ladder(const Scene& scene);
-/// One CalculiX run in `work_dir` (input, log and .dat kept there). Failures come back as a
-/// failed record with the reason.
-RunRecord calculix_run(const Scene& scene, const SolidMesh& mesh, const std::string& exe, const std::string& work_dir);
+/// One CalculiX run in `work_dir`. What stays there: the input deck (NAME.inp) and the frequencies
+/// read from it (NAME.modes.csv); ccx's own working files (.dat, .frd, .sta, .cvg, .12d, the log:
+/// hundreds of MB over a report) are removed once read, unless `keep_work_files` (or the run failed:
+/// then its log says why). Failures come back as a failed record with the reason.
+RunRecord calculix_run(const Scene& scene, const SolidMesh& mesh, const std::string& exe, const std::string& work_dir,
+                       bool keep_work_files = false);
 /// The ladders under a time budget (seconds each), as runs for the harness: the bricks
 /// ("calculix") and the practitioner's peer element ("calculix-S8R" / "calculix-B32R").
 std::vector<RunRecord> calculix_runs(const Scene& scene, const std::string& exe, const std::string& work_dir,
-                                     double budget_s, std::ostream* progress);
+                                     double budget_s, std::ostream* progress, bool keep_work_files = false);
 
 /// The element a practitioner would use for the scene's dimension: "S8R" shells for plates,
 /// "B32R" beams for beams (ccx expands both into C3D20R bricks; B32R takes no shear coefficient).
@@ -49,6 +52,6 @@ std::string calculix_peer_unsupported_reason(const Scene& scene);
 std::vector<Discretization> calculix_peer_ladder(const Scene& scene);
 /// One run of the peer element.
 RunRecord calculix_peer_run(const Scene& scene, const Discretization& mesh, const std::string& exe,
-                            const std::string& work_dir);
+                            const std::string& work_dir, bool keep_work_files = false);
 
 }  // namespace modalbench
