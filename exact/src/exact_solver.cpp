@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <utility>
 
@@ -11,6 +12,7 @@
 #include "exact_shapes.hpp"
 #include "plate_responses.hpp"
 #include "rotor.hpp"
+#include "modalbench/rotor_scene.hpp"
 
 namespace modalbench::exact {
 
@@ -346,6 +348,32 @@ class ExactKernels final : public Kernels {
   ModeList list_;
 };
 
+/// The shaft's bending frequencies below a spin, about (as a pinned uniform beam of its weaker
+/// plane, the discs' mass spread over it): the modes a Campbell diagram must reach at that spin.
+double modes_below(const Scene& s, double spin) {
+  const Section sec = s.section();
+  double mass = s.material.rho * sec.A * s.geometry.length;
+  for (const PointMass& m : s.masses) mass += m.mass;
+  const double EI = s.material.E * std::max(std::min(sec.Iy, sec.Iz), 1e-300), L = s.geometry.length;
+  const double omega1 = M_PI * M_PI / (L * L) * std::sqrt(EI * L / mass);
+  return omega1 > 0 ? std::floor(std::sqrt(std::min(spin / omega1, 1e18))) : 0.0;
+}
+
+/// A rotor's Campbell diagram, from the modes' cost `modes_s(n)`. Per spin: an axisymmetric shaft's
+/// two whirl lines, each a count like the modes' (measured: 2.6 ms per spin on the Timoshenko
+/// shaft's 4 roots, 13 ms on Friswell's two-disc rotor's 6), and the critical speeds below the top
+/// spin; an asymmetric shaft's modes of both planes up to the spin (doubled until they pass it). A
+/// spin far above the shaft's frequencies (E = 0.5 Pa for 0.5 GPa: 1e7 times the first) takes
+/// thousands of modes per spin: that is what refuses it up front.
+double rotor_seconds(const Scene& s, double k, const std::function<double(double)>& modes_s) {
+  const double spins = static_cast<double>(s.rotor->spin.size()), top = s.rotor->spin.back();
+  const double below_top = std::min(modes_below(s, top), 1e9);
+  if (axisymmetric_shaft(s)) return spins * 2.5 * modes_s(k) + 2.0 * modes_s(below_top + 1);
+  double per_spin = 0;
+  for (const double spin : s.rotor->spin) per_spin += 2.0 * 2.0 * modes_s(std::max(k, std::min(modes_below(s, spin), 1e9) + k));
+  return per_spin + 2.0 * 2.0 * modes_s(std::max(4.0 * k, below_top + 1));
+}
+
 }  // namespace
 
 Capability ExactSolver::supports(const Scene& s) const {
@@ -404,10 +432,9 @@ ResourceEstimate ExactSolver::estimate(const Scene& s, const Discretization&, co
     // the count's: measured on the paper beam (one gap) without its FRF, 1000 modes 0.9 s, 2000
     // 1.9 s, 4000 6.2 s, 8000 13 s.
     const double gaps = 1.0 + static_cast<double>(s.segments.size() + s.point_supports.size() + s.masses.size());
-    e.seconds = 0.65e-4 * k * std::log2(k + 2) * (1.0 + gaps);
-    // A rotor: two whirl directions per spin, each a count like the modes' (measured: 2.6 ms per spin
-    // on the Timoshenko shaft's 4 roots, 13 ms on Friswell's two-disc rotor's 6), and the criticals.
-    if (s.rotor) e.seconds *= 1.0 + 2.5 * static_cast<double>(s.rotor->spin.size());
+    const auto modes_s = [gaps](double n) { return 0.65e-4 * n * std::log2(n + 2) * (1.0 + gaps); };
+    e.seconds = modes_s(k);
+    if (s.rotor) e.seconds += rotor_seconds(s, k, modes_s);
     if (rq.frf) {
       const Section sec = s.section();
       const double EI = s.material.E * std::max(sec.Iy, 1e-300), rhoA = s.material.rho * sec.A;
@@ -424,8 +451,12 @@ ResourceEstimate ExactSolver::estimate(const Scene& s, const Discretization&, co
                 (rq.frf ? 4e-9 * terms_f * terms_f * rq.frf->points : 0.0);
     e.bytes = 200.0 * k;
   }
-  e.basis = fmt::format("{} modes{}", rq.modes,
-                        pieces_frf > 0 ? fmt::format(", FRF over ~{:.3g} pieces x {} samples", pieces_frf, rq.frf->points) : "");
+  e.basis = fmt::format("{} modes{}{}", rq.modes,
+                        pieces_frf > 0 ? fmt::format(", FRF over ~{:.3g} pieces x {} samples", pieces_frf, rq.frf->points) : "",
+                        s.rotor && s.is_beam() ? fmt::format(", {} spins up to {:.3g} rad/s, about {:.3g} shaft modes below it",
+                                                             s.rotor->spin.size(), s.rotor->spin.back(),
+                                                             modes_below(s, s.rotor->spin.back()))
+                                               : "");
   return e;
 }
 
