@@ -141,10 +141,10 @@ Setup setup_of(const Scene& scene, const ResolvedOptions& o, const ModelOptions&
 /// What the model is (Summary::model, method, fields) and its modelling notes.
 void describe_model(const Scene& scene, const Options& options, const Setup& st, const PrismModel& model, Result& r) {
   auto& sum = r.summary;
-  sum.method = "dtfm: " + model.description +
-               "; segment dynamic stiffness, Wittrick-Williams count with Brent polish" +
-               (st.polish_from_tolerance ? fmt::format(" to {:.2g} in omega^2 (1e-4 of the tolerance)", st.controls.rel_tol)
-                                      : std::string());
+  sum.method = "dtfm: " + model.description + "; segment dynamic stiffness, Wittrick-Williams count with Brent polish" +
+               (st.polish_from_tolerance
+                    ? fmt::format(" to {:.2g} in omega^2 (1e-4 of the tolerance)", st.controls.rel_tol)
+                    : std::string());
   // Modelling notes (not doubts about the numbers) belong to the method, not the warnings.
   for (const auto& n : model.notes) sum.method += "; " + n;
   // One prism is the scene's beam theory exactly; finer sections tend to a 3D-like model. Plate

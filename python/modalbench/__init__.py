@@ -106,6 +106,8 @@ class Result:
         self.frf_receptance = np.array([complex(s["re"], s["im"]) for s in frf], dtype=complex)
         self.mode_shapes = doc.get("mode_shapes")
         self.timing_s = doc["timing_s"]
+        # Each quantity's step (modes, shapes, statics, frf, campbell) with its own status and message.
+        self.steps = doc.get("steps", [])
         self.diagnostics = doc["diagnostics"]
         self.warnings = doc["warnings"]
         # Richardson values from the error estimate's meshes (None where not made: see as_dict).
