@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -40,7 +41,8 @@ std::string method_style(const std::string& title) {
 }
 
 /// gnuplot's SVG without what does not draw: comments, empty groups (gnuplot opens and closes one
-/// per style change) and runs of white space (a quarter to a third of the file).
+/// per style change), attributes at their defaults and runs of white space (a quarter to a third of
+/// the file).
 std::string minified(const std::string& svg) {
   std::string out;
   out.reserve(svg.size());
@@ -55,6 +57,9 @@ std::string minified(const std::string& svg) {
       out += svg[i++];
     }
   }
+  // SVG's defaults, which gnuplot writes on every group.
+  for (const char* dflt : {" stroke-linecap=\"butt\"", " stroke-linejoin=\"miter\""})
+    for (std::size_t at = out.find(dflt); at != std::string::npos; at = out.find(dflt, at)) out.erase(at, std::strlen(dflt));
   const std::regex empty_group("<g [^<>]*> ?</g>");
   for (std::string before; before != out;) {
     before = out;
