@@ -96,27 +96,70 @@ void LineAnalysis::repolish_near_poles(ClassLine& c, const Mesh& mesh, double la
   }
 }
 
+/// modes()' state from one phase to the next (the classes' meshes, near-rigid findings, bracket
+/// and modes found so far).
+struct LineAnalysis::ModeSearch {
+  struct Found {
+    double lambda;
+    int cls;
+    bool near = false;            // a near-rigid mode (below the count's resolution)
+    const Mesh* mesh = nullptr;   // the mesh its band was sliced on
+  };
+  int k = 0;
+  std::vector<int> cls;
+  double scale = 0, delta = 0;
+  std::vector<Mesh> mesh;                // per class: the mesh of the latest refresh
+  std::vector<NearRigid> near;           // per class
+  int rigid = 0;                         // the chosen classes' count below the rigid threshold
+  double hi = 0;                         // the bracket's top
+  std::vector<Found> all;
+  int true_rigid = 0;
+  std::vector<std::vector<Band>> bands;  // per class
+};
+
 ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   ModeList out;
   if (k <= 0) return out;
   const long evals0 = evaluations_;
-  const std::vector<int> cls = pick(families);
-  if (cls.empty()) return out;
-  const double scale = model_.lambda_scale;
-  const double delta = kRigidThreshold * scale;
-  std::vector<Mesh> mesh(lines_.size());
-  // The classes are independent line problems: each step below runs them side by side.
-  auto refresh = [&](double lam) {
-    side_by_side(cls.size(), [&](std::size_t i) { mesh[cls[i]] = mesh_for(*lines_[cls[i]], lam, {}); });
-  };
-  auto total = [&](double lam) {
-    std::vector<int> n(cls.size(), 0);
-    side_by_side(cls.size(), [&](std::size_t i) { n[i] = count_det(*lines_[cls[i]], lam, mesh[cls[i]]).count; });
-    int sum = 0;
-    for (int v : n) sum += v;
-    return sum;
-  };
-  refresh(scale);
+  ModeSearch s;
+  s.k = k;
+  s.cls = pick(families);
+  if (s.cls.empty()) return out;
+  s.scale = model_.lambda_scale;
+  s.delta = kRigidThreshold * s.scale;
+  s.mesh.resize(lines_.size());
+  s.bands.resize(lines_.size());
+  const double rigid_below = modes_rigid_threshold(s);
+  modes_near_rigid(s, rigid_below, out);
+  modes_bracket(s);
+  modes_rigid_found(s, out);
+  if (s.rigid < k) modes_slice(s, out);
+  modes_label(s, out);
+  modes_reproducibility(s, out);
+  out.evaluations = evaluations_ - evals0;
+  return out;
+}
+
+/// Meshes every chosen class for [0, lam].
+void LineAnalysis::modes_refresh(ModeSearch& s, double lam) {
+  // The classes are independent line problems: each step of modes() runs them side by side.
+  side_by_side(s.cls.size(), [&](std::size_t i) { s.mesh[s.cls[i]] = mesh_for(*lines_[s.cls[i]], lam, {}); });
+}
+
+/// The count below lam over the chosen classes, each on its current mesh.
+int LineAnalysis::modes_total(ModeSearch& s, double lam) {
+  std::vector<int> n(s.cls.size(), 0);
+  side_by_side(s.cls.size(), [&](std::size_t i) { n[i] = count_det(*lines_[s.cls[i]], lam, s.mesh[s.cls[i]]).count; });
+  int sum = 0;
+  for (int v : n) sum += v;
+  return sum;
+}
+
+/// The meshes for the scale and the threshold below which the count finds only rigid modes (kept
+/// in rigid_shift_); throws on a negative eigenvalue.
+double LineAnalysis::modes_rigid_threshold(ModeSearch& s) {
+  auto total = [&](double lam) { return modes_total(s, lam); };
+  modes_refresh(s, s.scale);
   // A plate's rigid-body motions that no edge reaches are exact zeros of the model, but its count
   // places them only within the rounding of K, which can exceed kRigidThreshold (a free plate of
   // 30 strips: three at |omega| ~ 2e-3 rad/s against 10 rad/s for the first elastic mode, some of
@@ -124,34 +167,46 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   // finds exactly those, none below minus it, and no other within a further factor of 100 (a gap
   // of two decades to the elastic modes); otherwise it stays, and what the count finds is judged
   // as before.
-  double rigid_below = delta;
+  double rigid_below = s.delta;
   if (model_.kind == SceneKind::Plate && model_.rigid_body_motions > 0 &&
-      (total(delta) != model_.rigid_body_motions || total(-delta) != 0))
-    rigid_below = plate_rigid_threshold(delta, scale, total);
+      (total(s.delta) != model_.rigid_body_motions || total(-s.delta) != 0))
+    rigid_below = plate_rigid_threshold(s.delta, s.scale, total);
   rigid_shift_ = rigid_below;
   if (const int neg = total(-rigid_below); neg > 0)
     throw std::runtime_error(fmt::format("the prism model has {} negative eigenvalue(s) omega^2 < 0: unstable", neg));
+  return rigid_below;
+}
+
+/// Each class's count below the threshold and its rigid and near-rigid modes (s.near, s.rigid);
+/// their problems into out's count message.
+void LineAnalysis::modes_near_rigid(ModeSearch& s, double rigid_below, ModeList& out) {
   // Each class's count below the threshold and the lowest eigenvalues of classes with rigid
   // motions of their own, rigid (0) and near-rigid, side by side.
   std::vector<int> rigid_c(lines_.size(), 0);
-  std::vector<NearRigid> near(lines_.size());
-  side_by_side(cls.size(), [&](std::size_t i) {
-    const int c = cls[i];
-    rigid_c[c] = count_det(*lines_[c], rigid_below, mesh[c]).count;
-    near[c] = near_rigid(*lines_[c], rigid_c[c]);
+  s.near.resize(lines_.size());
+  side_by_side(s.cls.size(), [&](std::size_t i) {
+    const int c = s.cls[i];
+    rigid_c[c] = count_det(*lines_[c], rigid_below, s.mesh[c]).count;
+    s.near[c] = near_rigid(*lines_[c], rigid_c[c]);
   });
-  int rigid = 0;
-  for (int c : cls) {
-    rigid += rigid_c[c];
-    if (rigid_below > delta) {  // a plate's (no rigid split of its own): its rigid modes lie below
-      near[c].lo = rigid_below;
-      near[c].below_lo = near[c].rigid = rigid_c[c];
+  s.rigid = 0;
+  for (int c : s.cls) {
+    s.rigid += rigid_c[c];
+    if (rigid_below > s.delta) {  // a plate's (no rigid split of its own): its rigid modes lie below
+      s.near[c].lo = rigid_below;
+      s.near[c].below_lo = s.near[c].rigid = rigid_c[c];
     }
-    if (!near[c].problem.empty()) {
+    if (!s.near[c].problem.empty()) {
       out.count_consistent = false;
-      out.count_message += (out.count_message.empty() ? "" : "; ") + near[c].problem;
+      out.count_message += (out.count_message.empty() ? "" : "; ") + s.near[c].problem;
     }
   }
+}
+
+/// The bracket's top s.hi above the k lowest eigenvalues, the classes meshed for it.
+void LineAnalysis::modes_bracket(ModeSearch& s) {
+  const int k = s.k;
+  const double scale = s.scale;
   // A plate's bracket starts where its k-th eigenvalue is expected, over-estimated: by Weyl's law
   // (N ~ a b sqrt(lambda rho h / D) / (4 pi), which under-counts a bounded plate's lowest modes)
   // times 4. One count then usually brackets the k lowest: doubling from lambda_scale took 11
@@ -172,23 +227,23 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   // its middle: mode 1 at exactly 16 times the scale), where the two bands' counts disagree by
   // rounding.
   const double off_grid = 1.0 + 1.0 / (10.0 * std::numbers::sqrt2);
-  double lo = delta, hi = (std::isfinite(expected) ? std::max(scale, expected) : scale) * off_grid;
-  int n_hi = rigid;
-  if (rigid < k) {
-    refresh(hi);
+  double lo = s.delta, hi = (std::isfinite(expected) ? std::max(scale, expected) : scale) * off_grid;
+  int n_hi = s.rigid;
+  if (s.rigid < k) {
+    modes_refresh(s, hi);
     double meshed_at = hi;
-    n_hi = total(hi);
+    n_hi = modes_total(s, hi);
     for (int grow = 0; n_hi < k; ++grow) {
       if (grow > 200) throw std::runtime_error("dtfm: could not bracket the requested modes");
       lo = hi;
       hi *= 2.0;
-      refresh(hi);
+      modes_refresh(s, hi);
       meshed_at = hi;
-      n_hi = total(hi);
+      n_hi = modes_total(s, hi);
     }
     for (int it = 0; it < 8 && n_hi > k + 1; ++it) {  // fewer modes to polish above the k-th
       const double mid = 0.5 * (lo + hi);
-      const int n = total(mid);
+      const int n = modes_total(s, mid);
       if (n >= k) {
         hi = mid;
         n_hi = n;
@@ -197,25 +252,26 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
       }
     }
     // The mesh for the bracket's top, not for an over-estimate far above it.
-    if (hi < 0.5 * meshed_at) refresh(hi);
+    if (hi < 0.5 * meshed_at) modes_refresh(s, hi);
   }
-  struct Found {
-    double lambda;
-    int cls;
-    bool near = false;            // a near-rigid mode (below the count's resolution)
-    const Mesh* mesh = nullptr;   // the mesh its band was sliced on
-  };
-  std::vector<Found> all;
-  int true_rigid = 0;
-  for (int c : cls) {
-    for (int j = 0; j < near[c].rigid; ++j) all.push_back({0.0, c});
-    true_rigid += near[c].rigid;
-    for (double v : near[c].lambdas) {
-      all.push_back({v, c, true});
+  s.hi = hi;
+}
+
+/// The rigid (0) and near-rigid modes into s.all, counted in out.
+void LineAnalysis::modes_rigid_found(ModeSearch& s, ModeList& out) {
+  for (int c : s.cls) {
+    for (int j = 0; j < s.near[c].rigid; ++j) s.all.push_back({0.0, c});
+    s.true_rigid += s.near[c].rigid;
+    for (double v : s.near[c].lambdas) {
+      s.all.push_back({v, c, true});
       ++out.near_rigid;
-      out.near_rigid_bound = std::max(out.near_rigid_bound, near[c].bound);
+      out.near_rigid_bound = std::max(out.near_rigid_bound, s.near[c].bound);
     }
   }
+}
+
+/// Class c's bands (s.bands[c]) from the bracket's top down to its near-rigid threshold, ascending.
+void LineAnalysis::modes_bands(ModeSearch& s, int c) {
   // Each class is sliced in bands of a factor kBand in lambda, each on the mesh its top needs:
   // one mesh for the whole range would cut the low modes into base pieces set by the highest
   // one, whose K(lambda) keeps lambda only to eps / (lambda m h^4 / EI) (mode 1 of a 1000-mode
@@ -230,90 +286,98 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     }
     return true;
   };
-  std::vector<std::vector<Band>> bands(lines_.size());
-  if (rigid < k) {
-    // Each class banded and sliced on its own (side by side), its findings merged in class order
-    // after.
-    struct Sliced {
-      SliceStats st;
-      std::vector<double> vals;
-      std::vector<const Band*> band_of;
-      ModeList notes;  // count_consistent, count_message of the class's bands and re-polish
-    };
-    std::vector<Sliced> sliced(cls.size());
-    side_by_side(cls.size(), [&](std::size_t i) {
-      const int c = cls[i];
-      Sliced& sl = sliced[i];
-      auto& bc = bands[c];
-      double top = hi, bot = hi;
-      Mesh m = mesh[c];
-      for (;;) {
-        const double next = bot / kBand;
-        Mesh mb;
-        if (next > near[c].lo) mb = mesh_for(*lines_[c], next, {});
-        if (!(next > near[c].lo) || !(mb.h_base > m.h_base)) {
-          bc.push_back({near[c].lo, top, m});
-          break;
-        }
-        bot = next;
-        // A mesh that cuts every segment into as many base pieces is the same discretization: the
-        // band goes on down (a 6x6 spatial beam's bound moved by 1e-4 relative per decade and
-        // gave ten bands of one discretization per class, each with its own counts).
-        if (same_pieces(mb, m)) continue;
-        bc.push_back({bot, top, m});
-        top = bot;
-        m = mb;
-      }
-      std::reverse(bc.begin(), bc.end());
-      for (std::size_t b = 0; b + 1 < bc.size(); ++b) {
-        const int below = count_det(*lines_[c], bc[b].hi, bc[b].mesh).count;
-        const int above = count_det(*lines_[c], bc[b].hi, bc[b + 1].mesh).count;
-        if (below != above) {
-          sl.notes.count_consistent = false;
-          sl.notes.count_message += fmt::format("{}the counts at {:.6g} rad/s on two meshes differ ({} and {})",
-                                                sl.notes.count_message.empty() ? "" : "; ", std::sqrt(bc[b].hi),
-                                                below, above);
-        }
-      }
-      for (const Band& band : bands[c]) {
-        auto v = slice_interval_polished([&](double lam) { return count_det(*lines_[c], lam, band.mesh); }, band.lo,
-                                         band.hi, ctl_.rel_tol, 1e-14 * scale, &sl.st);
-        if (model_.kind == SceneKind::Beam) repolish_near_poles(*lines_[c], band.mesh, band.hi, v, sl.notes, &sl.st);
-        sl.vals.insert(sl.vals.end(), v.begin(), v.end());
-        sl.band_of.insert(sl.band_of.end(), v.size(), &band);
-      }
-    });
-    for (std::size_t ci = 0; ci < cls.size(); ++ci) {
-      const int c = cls[ci];
-      const SliceStats& st = sliced[ci].st;
-      const std::vector<double>& vals = sliced[ci].vals;
-      const std::vector<const Band*>& band_of = sliced[ci].band_of;
-      if (!sliced[ci].notes.count_consistent) {
-        out.count_consistent = false;
-        out.count_message += (out.count_message.empty() ? "" : "; ") + sliced[ci].notes.count_message;
-      }
-      out.polish_floor_width = std::max(out.polish_floor_width, st.polish_floor_width);
-      for (std::size_t j = 0; j < vals.size(); ++j) {
-        if (j < near[c].enclosures.size()) {
-          // Inside its enclosure a sliced value is known to b as well (the count that placed it is
-          // the one in doubt here), so b is its bound either way. One outside it is moved to the
-          // enclosure's nearer end: a torsion on one spring beside G = 1e17 Pa was sliced 3e-8
-          // below the lower end, the Ritz value (the upper end) 1.3e-7 above the truth.
-          const auto [ritz, b] = near[c].enclosures[j];
-          out.near_rigid_bound = std::max(out.near_rigid_bound, b);
-          ++out.near_rigid;
-          if (vals[j] < ritz / (1.0 + b) || vals[j] > ritz * (1.0 + 1e-12)) {
-            all.push_back({std::clamp(vals[j], ritz / (1.0 + b), ritz), c, true});
-            continue;
-          }
-        }
-        all.push_back({vals[j], c, false, &band_of[j]->mesh});
+  auto& bc = s.bands[c];
+  double top = s.hi, bot = s.hi;
+  Mesh m = s.mesh[c];
+  for (;;) {
+    const double next = bot / kBand;
+    Mesh mb;
+    if (next > s.near[c].lo) mb = mesh_for(*lines_[c], next, {});
+    if (!(next > s.near[c].lo) || !(mb.h_base > m.h_base)) {
+      bc.push_back({s.near[c].lo, top, m});
+      break;
+    }
+    bot = next;
+    // A mesh that cuts every segment into as many base pieces is the same discretization: the
+    // band goes on down (a 6x6 spatial beam's bound moved by 1e-4 relative per decade and
+    // gave ten bands of one discretization per class, each with its own counts).
+    if (same_pieces(mb, m)) continue;
+    bc.push_back({bot, top, m});
+    top = bot;
+    m = mb;
+  }
+  std::reverse(bc.begin(), bc.end());
+}
+
+/// Every class sliced band by band (side by side), its values merged into s.all in class order
+/// (a near-rigid enclosure correcting the lowest).
+void LineAnalysis::modes_slice(ModeSearch& s, ModeList& out) {
+  struct Sliced {
+    SliceStats st;
+    std::vector<double> vals;
+    std::vector<const Band*> band_of;
+    ModeList notes;  // count_consistent, count_message of the class's bands and re-polish
+  };
+  std::vector<Sliced> sliced(s.cls.size());
+  side_by_side(s.cls.size(), [&](std::size_t i) {
+    const int c = s.cls[i];
+    Sliced& sl = sliced[i];
+    modes_bands(s, c);
+    const auto& bc = s.bands[c];
+    for (std::size_t b = 0; b + 1 < bc.size(); ++b) {
+      const int below = count_det(*lines_[c], bc[b].hi, bc[b].mesh).count;
+      const int above = count_det(*lines_[c], bc[b].hi, bc[b + 1].mesh).count;
+      if (below != above) {
+        sl.notes.count_consistent = false;
+        sl.notes.count_message += fmt::format("{}the counts at {:.6g} rad/s on two meshes differ ({} and {})",
+                                              sl.notes.count_message.empty() ? "" : "; ", std::sqrt(bc[b].hi),
+                                              below, above);
       }
     }
+    for (const Band& band : s.bands[c]) {
+      auto v = slice_interval_polished([&](double lam) { return count_det(*lines_[c], lam, band.mesh); }, band.lo,
+                                       band.hi, ctl_.rel_tol, 1e-14 * s.scale, &sl.st);
+      if (model_.kind == SceneKind::Beam) repolish_near_poles(*lines_[c], band.mesh, band.hi, v, sl.notes, &sl.st);
+      sl.vals.insert(sl.vals.end(), v.begin(), v.end());
+      sl.band_of.insert(sl.band_of.end(), v.size(), &band);
+    }
+  });
+  for (std::size_t ci = 0; ci < s.cls.size(); ++ci) {
+    const int c = s.cls[ci];
+    const SliceStats& st = sliced[ci].st;
+    const std::vector<double>& vals = sliced[ci].vals;
+    const std::vector<const Band*>& band_of = sliced[ci].band_of;
+    if (!sliced[ci].notes.count_consistent) {
+      out.count_consistent = false;
+      out.count_message += (out.count_message.empty() ? "" : "; ") + sliced[ci].notes.count_message;
+    }
+    out.polish_floor_width = std::max(out.polish_floor_width, st.polish_floor_width);
+    for (std::size_t j = 0; j < vals.size(); ++j) {
+      if (j < s.near[c].enclosures.size()) {
+        // Inside its enclosure a sliced value is known to b as well (the count that placed it is
+        // the one in doubt here), so b is its bound either way. One outside it is moved to the
+        // enclosure's nearer end: a torsion on one spring beside G = 1e17 Pa was sliced 3e-8
+        // below the lower end, the Ritz value (the upper end) 1.3e-7 above the truth.
+        const auto [ritz, b] = s.near[c].enclosures[j];
+        out.near_rigid_bound = std::max(out.near_rigid_bound, b);
+        ++out.near_rigid;
+        if (vals[j] < ritz / (1.0 + b) || vals[j] > ritz * (1.0 + 1e-12)) {
+          s.all.push_back({std::clamp(vals[j], ritz / (1.0 + b), ritz), c, true});
+          continue;
+        }
+      }
+      s.all.push_back({vals[j], c, false, &band_of[j]->mesh});
+    }
   }
-  std::stable_sort(all.begin(), all.end(), [](const Found& a, const Found& b) { return a.lambda < b.lambda; });
-  if (static_cast<int>(all.size()) > k) all.resize(k);
-  out.rigid = std::min(true_rigid, k);
+}
+
+/// The k lowest of s.all into out, ascending, with their families and family shares.
+void LineAnalysis::modes_label(ModeSearch& s, ModeList& out) {
+  auto& all = s.all;
+  std::stable_sort(all.begin(), all.end(),
+                   [](const ModeSearch::Found& a, const ModeSearch::Found& b) { return a.lambda < b.lambda; });
+  if (static_cast<int>(all.size()) > s.k) all.resize(s.k);
+  out.rigid = std::min(s.true_rigid, s.k);
   // One prism cannot deform in its section: every mode of a class is of its family (the share's
   // inverse iteration loses its digits next to springs of 1e12 EI / L^3 and mislabelled them).
   // Otherwise each mode's share from its own inverse iteration, side by side.
@@ -342,6 +406,12 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     out.family_share.push_back(share);
     out.family.push_back(share >= ctl_.family_threshold ? line.family : ModeFamily::Unknown);
   }
+}
+
+/// Each mode's count just below and above it on a second discretization: out.reproducible, and a
+/// message for those that do not reproduce.
+void LineAnalysis::modes_reproducibility(ModeSearch& s, ModeList& out) {
+  const auto& all = s.all;
   // Reproducibility: each mode's class is counted just below and above it (lambda (1 -+ tau))
   // on a second discretization: each segment cut in three equal pieces, base pieces within the
   // same bounds (other J0, other pivots, other rounding, the same accuracy; 2/3 of the first's
@@ -375,7 +445,7 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
   const std::size_t first = static_cast<std::size_t>(out.rigid);
   std::vector<const Mesh*> alt_mesh(all.size(), nullptr);
   for (std::size_t i = first; i < all.size(); ++i)
-    if (!all[i].near) alt_mesh[i] = &alt_for(all[i].mesh ? all[i].mesh : &mesh[all[i].cls]);
+    if (!all[i].near) alt_mesh[i] = &alt_for(all[i].mesh ? all[i].mesh : &s.mesh[all[i].cls]);
   std::vector<std::array<int, 2>> got(all.size(), {0, 0});
   side_by_side(all.size() - first, [&](std::size_t j) {
     const std::size_t i = first + j;
@@ -391,9 +461,9 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     }
     const int c = all[i].cls;
     const double lam = all[i].lambda;
-    int below = near[c].below_lo, upto = near[c].below_lo;
+    int below = s.near[c].below_lo, upto = s.near[c].below_lo;
     for (const auto& f : all)
-      if (f.cls == c && f.lambda >= delta) {  // those below it are in below_lo
+      if (f.cls == c && f.lambda >= s.delta) {  // those below it are in below_lo
         below += f.lambda < lam * (1 - tau);
         upto += f.lambda <= lam * (1 + tau);
       }
@@ -410,8 +480,6 @@ ModeList LineAnalysis::modes(int k, const std::vector<ModeFamily>& families) {
     }
   }
   if (failures > 4) out.count_message += fmt::format("; {} more", failures - 4);
-  out.evaluations = evaluations_ - evals0;
-  return out;
 }
 
 }  // namespace modalbench::dtfm

@@ -203,6 +203,18 @@ class LineAnalysis {
   void repolish_near_poles(ClassLine& c, const Mesh& mesh, double lambda_max, std::vector<double>& vals,
                            ModeList& out, SliceStats* st);
   double family_share(ClassLine& c, double lambda);
+  /// modes()' phases in order, and the state they hand on (analysis_modes.cpp).
+  struct ModeSearch;
+  void modes_refresh(ModeSearch& s, double lam);
+  int modes_total(ModeSearch& s, double lam);
+  double modes_rigid_threshold(ModeSearch& s);
+  void modes_near_rigid(ModeSearch& s, double rigid_below, ModeList& out);
+  void modes_bracket(ModeSearch& s);
+  void modes_rigid_found(ModeSearch& s, ModeList& out);
+  void modes_bands(ModeSearch& s, int c);
+  void modes_slice(ModeSearch& s, ModeList& out);
+  void modes_label(ModeSearch& s, ModeList& out);
+  void modes_reproducibility(ModeSearch& s, ModeList& out);
   /// A free plate's rigid threshold from the total count over its classes (analysis_modes.cpp).
   double plate_rigid_threshold(double delta, double scale, const std::function<int(double)>& total) const;
   /// The lowest eigenvalues of class c, `below` of them under the count's threshold: rigid-body
