@@ -128,6 +128,228 @@ std::vector<Eigen::MatrixXd> interior(const Gap& g, const Eigen::MatrixXd& left,
   return {d.begin() + 1, d.end() - 1};
 }
 
+/// A cluster's shapes along its line, refined to every base-piece node: the displacements D there
+/// (class coordinates; the end nodes' in the ends' bases) and the states Y = [q; f].
+struct FineNodes {
+  std::vector<Eigen::MatrixXd> D, Y;
+  std::vector<const Gap*> piece;     // per fine segment: its gap (base piece length and matrix)
+  std::vector<std::size_t> fine_of;  // each node's index among D's
+};
+
+/// The Gram matrix int q_a^T M q_b dx of a cluster's shapes, their participations int q_a^T M r_d dx
+/// and the directions the class moves in.
+struct MassIntegrals {
+  Eigen::MatrixXd G, Gamma;
+  std::vector<int> dirs;
+};
+
+/// The distinct gaps of nodes x (per piece and length) and the worst conditioning of their middle
+/// blocks (`worst`, lowered from its value).
+std::vector<Gap> make_gaps(const LineAnalysis::ClassLine& c, const std::vector<Eigen::MatrixXd>& A,
+                           const std::vector<double>& x, double h_base, double& worst) {
+  std::vector<Gap> gaps;
+  for (std::size_t g = 0; g + 1 < x.size(); ++g) {
+    const double h = x[g + 1] - x[g];
+    const int piece = c.piece_of(x[g], x[g + 1]);
+    if (std::any_of(gaps.begin(), gaps.end(),
+                    [&](const Gap& e) { return e.piece == piece && std::abs(h - e.h) <= 1e-9 * h; }))
+      continue;
+    gaps.push_back(make_gap(A[static_cast<std::size_t>(piece)], h, h_base, piece));
+    worst = std::min(worst, gaps.back().min_pivot_rel);
+  }
+  return gaps;
+}
+
+/// The null vectors V (nodes x of the gaps) carried to every base-piece node and their states there.
+FineNodes fine_nodes(const LineAnalysis::ClassLine& c, const std::vector<double>& x, const std::vector<Gap>& gaps,
+                     const Eigen::MatrixXd& V) {
+  const int mc = c.mc;
+  const int nc = static_cast<int>(x.size());
+  const auto p = V.cols();
+  // Displacements at every base-piece node (class coordinates; the end nodes' in the ends'
+  // bases), the gaps' interiors by condensation at lambda, and the state [q; f] at each node
+  // (f from the base piece's dynamic stiffness).
+  FineNodes fn;
+  auto& D = fn.D;
+  auto& Y = fn.Y;
+  fn.fine_of.assign(static_cast<std::size_t>(nc), 0);
+  for (int i = 0; i < nc; ++i) {
+    Eigen::MatrixXd d = V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
+    if (const auto* e = c.condition_at(x, static_cast<std::size_t>(i))) d = e->B * d;
+    if (i == 0) {
+      D.push_back(d);
+      continue;
+    }
+    const double h = x[i] - x[i - 1];
+    const int pc = c.piece_of(x[i - 1], x[i]);
+    const Gap* gap = &gaps.front();
+    for (const auto& e : gaps)
+      if (e.piece == pc && std::abs(h - e.h) <= 1e-9 * h) gap = &e;
+    const std::vector<Eigen::MatrixXd> inner = interior(*gap, D.back(), d);
+    const std::size_t pieces = inner.size() + 1;
+    for (std::size_t k = 0; k < pieces; ++k) {
+      D.push_back(k + 1 == pieces ? d : inner[k]);
+      fn.piece.push_back(gap);
+    }
+    fn.fine_of[static_cast<std::size_t>(i)] = D.size() - 1;
+  }
+  const int nn = static_cast<int>(D.size());
+  Y.assign(static_cast<std::size_t>(nn), Eigen::MatrixXd(2 * mc, p));
+  for (int i = 0; i + 1 < nn; ++i) {
+    Eigen::MatrixXd dd(2 * mc, p);
+    dd << D[i], D[i + 1];
+    const Eigen::MatrixXd fk = fn.piece[i]->K.back() * dd;  // [-f(0); f(h)]
+    Y[i] << D[i], -fk.topRows(mc);
+    if (i + 2 == nn) Y[i + 1] << D[i + 1], fk.bottomRows(mc);
+  }
+  return fn;
+}
+
+/// The Gram matrix and participations of the fields between the fine nodes, by quadrature of the
+/// exact field segment by segment (A: the state matrix per piece).
+MassIntegrals mass_integrals(const PrismModel& model, const LineAnalysis::ClassLine& c,
+                             const std::vector<Eigen::MatrixXd>& A, const Eigen::MatrixXd& translations,
+                             const FineNodes& fn) {
+  const int mc = c.mc;
+  const auto& D = fn.D;
+  const auto& Y = fn.Y;
+  const auto& piece = fn.piece;
+  const Eigen::Index p = D.front().cols();
+  const int nn = static_cast<int>(D.size());
+  // Gram matrix int q_a^T M q_b dx and participations int q_a^T M r_d dx, segment by segment.
+  // Per piece: the class mass, the translations' forces and the transfer matrices.
+  std::vector<Eigen::MatrixXd> Mqs, Rcs;
+  std::vector<Transfer> T;
+  for (int k = 0; k < c.pieces(); ++k) {
+    const Eigen::MatrixXd& Mphys = k == 0 ? model.M : model.steps[static_cast<std::size_t>(k) - 1].M;
+    Mqs.push_back(c.W.transpose() * Mphys * c.W);
+    Rcs.push_back(c.W.transpose() * Mphys * translations);
+    T.emplace_back(A[static_cast<std::size_t>(k)]);
+  }
+  MassIntegrals mi{Eigen::MatrixXd::Zero(p, p), Eigen::MatrixXd::Zero(p, 3), {}};
+  auto& G = mi.G;
+  auto& Gamma = mi.Gamma;
+  for (int dir = 0; dir < 3; ++dir) {
+    double nrm = 0, all = 0;
+    for (const auto& Rc : Rcs) {
+      nrm = std::max(nrm, Rc.col(dir).norm());
+      all = std::max(all, Rc.norm());
+    }
+    if (nrm > 1e-14 * all) mi.dirs.push_back(dir);  // the class moves in dir
+  }
+  for (int i = 0; i + 1 < nn; ++i) {
+    const double h = piece[i]->h_base;
+    const auto k_piece = static_cast<std::size_t>(piece[i]->piece);
+    const Eigen::MatrixXd& Mq = Mqs[k_piece];
+    const Eigen::MatrixXd& Rc = Rcs[k_piece];
+    // The field q (and M q) at the quadrature abscissae, shared by the integrands of this segment.
+    std::map<double, std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> field;
+    auto at = [&](double s) -> const std::pair<Eigen::MatrixXd, Eigen::MatrixXd>& {
+      if (const auto it = field.find(s); it != field.end()) return it->second;
+      Eigen::MatrixXd d = T[k_piece](s).topRows(mc) * Y[i];
+      Eigen::MatrixXd md = Mq * d;
+      return field.emplace(s, std::make_pair(std::move(d), std::move(md))).first->second;
+    };
+    // Absolute tolerance on the natural scale of each integrand (a cross term or a
+    // participation may cancel within a segment: GSL cannot reach a relative one there).
+    const double size = std::max({D[i].norm(), D[i + 1].norm(), at(0.5 * h).first.norm()});
+    auto integral = [&](auto&& g, double scale) {
+      return integrate([&](double s) { return g(at(s)); }, 0.0, h, 1e-12, 1e-12 * h * scale).value;
+    };
+    using Field = std::pair<Eigen::MatrixXd, Eigen::MatrixXd>;
+    for (Eigen::Index u = 0; u < p; ++u) {
+      for (Eigen::Index v = u; v < p; ++v) {
+        G(u, v) += integral([&](const Field& f) { return f.first.col(u).dot(f.second.col(v)); },
+                            Mq.norm() * size * size);
+        G(v, u) = G(u, v);
+      }
+      for (int dir : mi.dirs)
+        Gamma(u, dir) += integral([&](const Field& f) { return Rc.col(dir).dot(f.first.col(u)); },
+                                  Rc.col(dir).norm() * size);
+    }
+  }
+  return mi;
+}
+
+/// Adds the point masses at nodes x to the Gram matrix and participations of null vectors V.
+void add_point_masses(const LineAnalysis::ClassLine& c, const std::vector<double>& x, const Eigen::MatrixXd& V,
+                      const Eigen::MatrixXd& translations, MassIntegrals& mi) {
+  const int mc = c.mc;
+  const int nc = static_cast<int>(x.size());
+  // The point masses at their nodes.
+  for (int i = 0; i < nc; ++i) {
+    const auto* e = c.condition_at(x, static_cast<std::size_t>(i));
+    if (!e || e->Mc.size() == 0) continue;
+    const Eigen::MatrixXd d = e->B * V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
+    mi.G += d.transpose() * e->Mc * d;
+    const Eigen::MatrixXd Rp = c.W.transpose() * e->Mfields * translations;
+    for (int dir : mi.dirs) mi.Gamma.col(dir) += d.transpose() * Rp.col(dir);
+  }
+}
+
+/// The basis change Cb that mass-orthonormalizes p modes of Gram matrix G (identity for one).
+Eigen::MatrixXd mass_orthonormal(const Eigen::MatrixXd& G, Eigen::Index p, double lambda) {
+  // Several modes: mass-orthonormalized (G = L L^T, basis V L^-T), which keeps the first.
+  Eigen::MatrixXd Cb = Eigen::MatrixXd::Identity(p, p);
+  if (p > 1) {
+    Eigen::LLT<Eigen::MatrixXd> llt(G);
+    if (llt.info() != Eigen::Success)
+      throw std::runtime_error(
+          fmt::format("the {} modes at omega^2 = {:.6g} are not independent in the mass", p, lambda));
+    Cb = llt.matrixU().solve(Eigen::MatrixXd::Identity(p, p));
+  }
+  return Cb;
+}
+
+/// The node of x at sample position xx (sample positions are nodes).
+int sample_node(const std::vector<double>& x, double xx, double length) {
+  const int nc = static_cast<int>(x.size());
+  for (int i = 0; i < nc; ++i)
+    if (std::abs(x[i] - xx) <= 1e-9 * length) return i;
+  throw std::logic_error(fmt::format("dtfm: shape sample x = {} is not a node", xx));
+}
+
+/// Per component: the sampled section response of null vectors V (points x modes).
+std::vector<Eigen::MatrixXd> sample_values(const PrismModel& model, const LineAnalysis::ClassLine& c,
+                                           const std::vector<double>& x, const Eigen::MatrixXd& V,
+                                           const ModeShapes& out) {
+  const Eigen::Index p = V.cols();
+  // Samples: the section response of the nodal fields (sample positions are nodes).
+  std::vector<std::vector<Eigen::VectorXd>> q(static_cast<std::size_t>(p));
+  for (Eigen::Index u = 0; u < p; ++u) q[u] = to_fields(c, Eigen::VectorXd(V.col(u)), x);
+  const std::size_t np = out.points.size(), ncomp = out.components.size();
+  std::vector<Eigen::MatrixXd> raw(ncomp, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p));
+  for (std::size_t s = 0; s < np; ++s) {
+    const auto& pt = out.points[s];
+    const int i = sample_node(x, std::clamp(pt[0], 0.0, model.length), model.length);
+    for (Eigen::Index u = 0; u < p; ++u) {
+      const Deflection d = model.section_response(q[u][i], pt[1]);
+      for (std::size_t k = 0; k < ncomp; ++k)
+        raw[k](static_cast<Eigen::Index>(s), u) = component(d, out.components[k]);
+    }
+  }
+  return raw;
+}
+
+/// The bending moment My at the sample points (points x modes) from the states at the fine nodes.
+Eigen::MatrixXd sample_moments(const PrismModel& model, const LineAnalysis::ClassLine& c,
+                               const std::vector<double>& x, const FineNodes& fn,
+                               const std::vector<std::array<double, 2>>& points) {
+  const int mc = c.mc;
+  const Eigen::Index p = fn.D.front().cols();
+  const std::size_t np = points.size();
+  // My: the section's moment about y of the field forces f = sigma W^-T f_c (the class line's
+  // scaled forces back to the fields, as the reactions'), with the rigid rotation theta_y's column
+  // of the fields; sagging positive.
+  const Eigen::RowVectorXd row = -c.sigma * model.rigid_motions.col(4).transpose() * c.Winv.transpose();
+  Eigen::MatrixXd raw_m = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p);
+  for (std::size_t s = 0; s < np; ++s) {
+    const int i = sample_node(x, std::clamp(points[s][0], 0.0, model.length), model.length);
+    raw_m.row(static_cast<Eigen::Index>(s)) = row * fn.Y[fn.fine_of[static_cast<std::size_t>(i)]].bottomRows(mc);
+  }
+  return raw_m;
+}
+
 }  // namespace
 
 ModeShapes LineAnalysis::mode_shapes(const ModeList& modes, const std::vector<std::array<double, 2>>& points,
@@ -186,9 +408,7 @@ ModeShapes LineAnalysis::mode_shapes(const ModeList& modes, const std::vector<st
 void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
                                   const std::vector<double>& xs, const Eigen::MatrixXd& translations,
                                   bool moments, ModeShapes& out) {
-  const int mc = c.mc;
   const auto p = static_cast<Eigen::Index>(which.size());
-  const bool rigid = lambda == 0.0;
   std::vector<Eigen::MatrixXd> A;  // per piece
   for (int k = 0; k < c.pieces(); ++k) A.push_back(c.state(lambda, k));
   // Nodes at the sample positions; each gap a long segment of 2^levels base pieces. A gap whose
@@ -197,23 +417,45 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
   Mesh mesh = mesh_for(c, lambda, xs);
   std::vector<Gap> gaps;
   for (int attempt = 0;; ++attempt) {
-    gaps.clear();
     double worst = 1.0;
-    for (std::size_t g = 0; g + 1 < mesh.x.size(); ++g) {
-      const double h = mesh.x[g + 1] - mesh.x[g];
-      const int piece = c.piece_of(mesh.x[g], mesh.x[g + 1]);
-      if (std::any_of(gaps.begin(), gaps.end(),
-                      [&](const Gap& e) { return e.piece == piece && std::abs(h - e.h) <= 1e-9 * h; }))
-        continue;
-      gaps.push_back(make_gap(A[static_cast<std::size_t>(piece)], h, mesh.h_base, piece));
-      worst = std::min(worst, gaps.back().min_pivot_rel);
-    }
+    gaps = make_gaps(c, A, mesh.x, mesh.h_base, worst);
     if (worst >= 1e-10 || attempt >= 4) break;
     mesh = refined(mesh);
   }
+  const Eigen::MatrixXd V = shape_null_space(c, lambda, mesh, p);
+  const FineNodes fn = fine_nodes(c, mesh.x, gaps, V);
+  MassIntegrals mi = mass_integrals(model_, c, A, translations, fn);
+  add_point_masses(c, mesh.x, V, translations, mi);
+  const Eigen::MatrixXd Cb = mass_orthonormal(mi.G, p, lambda);
+  const Eigen::MatrixXd Gn = Cb.transpose() * mi.G * Cb, Gamman = Cb.transpose() * mi.Gamma;
+
+  const std::vector<Eigen::MatrixXd> raw = sample_values(model_, c, mesh.x, V, out);
+  Eigen::MatrixXd raw_m;
+  if (moments) raw_m = sample_moments(model_, c, mesh.x, fn, out.points);
+  const std::size_t np = out.points.size(), ncomp = out.components.size();
+  for (Eigen::Index j = 0; j < p; ++j) {
+    const std::size_t mode = which[static_cast<std::size_t>(j)];
+    if (moments) {
+      const Eigen::VectorXd col = raw_m * Cb.col(j);
+      out.moments[mode].assign(col.data(), col.data() + col.size());
+    }
+    auto& vals = out.values[mode];
+    vals.assign(ncomp, std::vector<double>(np, 0.0));
+    for (std::size_t k = 0; k < ncomp; ++k) {
+      const Eigen::VectorXd col = raw[k] * Cb.col(j);
+      for (std::size_t s = 0; s < np; ++s) vals[k][s] = col[static_cast<Eigen::Index>(s)];
+    }
+    out.generalized_mass[mode] = Gn(j, j);
+    for (int dir = 0; dir < 3; ++dir) out.participation[mode][dir] = Gamman(j, dir);
+  }
+}
+
+/// The null space of class c's K at lambda on mesh (p vectors, orthonormal) by inverse iteration.
+Eigen::MatrixXd LineAnalysis::shape_null_space(ClassLine& c, double lambda, const Mesh& mesh, Eigen::Index p) {
+  const int mc = c.mc;
+  const bool rigid = lambda == 0.0;
   const int nc = static_cast<int>(mesh.x.size());
   const Eigen::Index N = static_cast<Eigen::Index>(nc) * mc;
-
   // The null space by inverse iteration (orthonormalized block), just above the root (below 0
   // for the rigid modes: K is then positive definite, the rigid motions its smallest part). A
   // root known to rounding can put K(shift) within rounding of singular (a pivot of 1e-15 of its
@@ -244,162 +486,7 @@ void LineAnalysis::cluster_shapes(ClassLine& c, double lambda, const std::vector
       if (rigid || attempt >= 2) throw;
     }
   }
-
-  // Displacements at every base-piece node (class coordinates; the end nodes' in the ends'
-  // bases), the gaps' interiors by condensation at lambda, and the state [q; f] at each node
-  // (f from the base piece's dynamic stiffness).
-  std::vector<Eigen::MatrixXd> D, Y;
-  std::vector<const Gap*> piece;  // per fine segment: its gap (base piece length and matrix)
-  std::vector<std::size_t> fine_of(static_cast<std::size_t>(nc), 0);  // each node's index among D's
-  for (int i = 0; i < nc; ++i) {
-    Eigen::MatrixXd d = V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
-    if (const auto* e = c.condition_at(mesh.x, static_cast<std::size_t>(i))) d = e->B * d;
-    if (i == 0) {
-      D.push_back(d);
-      continue;
-    }
-    const double h = mesh.x[i] - mesh.x[i - 1];
-    const int pc = c.piece_of(mesh.x[i - 1], mesh.x[i]);
-    const Gap* gap = &gaps.front();
-    for (const auto& e : gaps)
-      if (e.piece == pc && std::abs(h - e.h) <= 1e-9 * h) gap = &e;
-    const std::vector<Eigen::MatrixXd> inner = interior(*gap, D.back(), d);
-    const std::size_t pieces = inner.size() + 1;
-    for (std::size_t k = 0; k < pieces; ++k) {
-      D.push_back(k + 1 == pieces ? d : inner[k]);
-      piece.push_back(gap);
-    }
-    fine_of[static_cast<std::size_t>(i)] = D.size() - 1;
-  }
-  const int nn = static_cast<int>(D.size());
-  Y.assign(static_cast<std::size_t>(nn), Eigen::MatrixXd(2 * mc, p));
-  for (int i = 0; i + 1 < nn; ++i) {
-    Eigen::MatrixXd dd(2 * mc, p);
-    dd << D[i], D[i + 1];
-    const Eigen::MatrixXd fk = piece[i]->K.back() * dd;  // [-f(0); f(h)]
-    Y[i] << D[i], -fk.topRows(mc);
-    if (i + 2 == nn) Y[i + 1] << D[i + 1], fk.bottomRows(mc);
-  }
-
-  // Gram matrix int q_a^T M q_b dx and participations int q_a^T M r_d dx, segment by segment.
-  // Per piece: the class mass, the translations' forces and the transfer matrices.
-  std::vector<Eigen::MatrixXd> Mqs, Rcs;
-  std::vector<Transfer> T;
-  for (int k = 0; k < c.pieces(); ++k) {
-    const Eigen::MatrixXd& Mphys = k == 0 ? model_.M : model_.steps[static_cast<std::size_t>(k) - 1].M;
-    Mqs.push_back(c.W.transpose() * Mphys * c.W);
-    Rcs.push_back(c.W.transpose() * Mphys * translations);
-    T.emplace_back(A[static_cast<std::size_t>(k)]);
-  }
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(p, p), Gamma = Eigen::MatrixXd::Zero(p, 3);
-  std::vector<int> dirs;
-  for (int dir = 0; dir < 3; ++dir) {
-    double nrm = 0, all = 0;
-    for (const auto& Rc : Rcs) {
-      nrm = std::max(nrm, Rc.col(dir).norm());
-      all = std::max(all, Rc.norm());
-    }
-    if (nrm > 1e-14 * all) dirs.push_back(dir);  // the class moves in dir
-  }
-  for (int i = 0; i + 1 < nn; ++i) {
-    const double h = piece[i]->h_base;
-    const auto k_piece = static_cast<std::size_t>(piece[i]->piece);
-    const Eigen::MatrixXd& Mq = Mqs[k_piece];
-    const Eigen::MatrixXd& Rc = Rcs[k_piece];
-    // The field q (and M q) at the quadrature abscissae, shared by the integrands of this segment.
-    std::map<double, std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> field;
-    auto at = [&](double s) -> const std::pair<Eigen::MatrixXd, Eigen::MatrixXd>& {
-      if (const auto it = field.find(s); it != field.end()) return it->second;
-      Eigen::MatrixXd d = T[k_piece](s).topRows(mc) * Y[i];
-      Eigen::MatrixXd md = Mq * d;
-      return field.emplace(s, std::make_pair(std::move(d), std::move(md))).first->second;
-    };
-    // Absolute tolerance on the natural scale of each integrand (a cross term or a
-    // participation may cancel within a segment: GSL cannot reach a relative one there).
-    const double size = std::max({D[i].norm(), D[i + 1].norm(), at(0.5 * h).first.norm()});
-    auto integral = [&](auto&& g, double scale) {
-      return integrate([&](double s) { return g(at(s)); }, 0.0, h, 1e-12, 1e-12 * h * scale).value;
-    };
-    using Field = std::pair<Eigen::MatrixXd, Eigen::MatrixXd>;
-    for (Eigen::Index u = 0; u < p; ++u) {
-      for (Eigen::Index v = u; v < p; ++v) {
-        G(u, v) += integral([&](const Field& f) { return f.first.col(u).dot(f.second.col(v)); },
-                            Mq.norm() * size * size);
-        G(v, u) = G(u, v);
-      }
-      for (int dir : dirs)
-        Gamma(u, dir) += integral([&](const Field& f) { return Rc.col(dir).dot(f.first.col(u)); },
-                                  Rc.col(dir).norm() * size);
-    }
-  }
-
-  // The point masses at their nodes.
-  for (int i = 0; i < nc; ++i) {
-    const auto* e = c.condition_at(mesh.x, static_cast<std::size_t>(i));
-    if (!e || e->Mc.size() == 0) continue;
-    const Eigen::MatrixXd d = e->B * V.middleRows(static_cast<Eigen::Index>(i) * mc, mc);
-    G += d.transpose() * e->Mc * d;
-    const Eigen::MatrixXd Rp = c.W.transpose() * e->Mfields * translations;
-    for (int dir : dirs) Gamma.col(dir) += d.transpose() * Rp.col(dir);
-  }
-
-  // Several modes: mass-orthonormalized (G = L L^T, basis V L^-T), which keeps the first.
-  Eigen::MatrixXd Cb = Eigen::MatrixXd::Identity(p, p);
-  if (p > 1) {
-    Eigen::LLT<Eigen::MatrixXd> llt(G);
-    if (llt.info() != Eigen::Success)
-      throw std::runtime_error(
-          fmt::format("the {} modes at omega^2 = {:.6g} are not independent in the mass", p, lambda));
-    Cb = llt.matrixU().solve(Eigen::MatrixXd::Identity(p, p));
-  }
-  const Eigen::MatrixXd Gn = Cb.transpose() * G * Cb, Gamman = Cb.transpose() * Gamma;
-
-  // Samples: the section response of the nodal fields (sample positions are nodes).
-  auto node = [&](double xx) {
-    for (int i = 0; i < nc; ++i)
-      if (std::abs(mesh.x[i] - xx) <= 1e-9 * model_.length) return i;
-    throw std::logic_error(fmt::format("dtfm: shape sample x = {} is not a node", xx));
-  };
-  std::vector<std::vector<Eigen::VectorXd>> q(static_cast<std::size_t>(p));
-  for (Eigen::Index u = 0; u < p; ++u) q[u] = to_fields(c, Eigen::VectorXd(V.col(u)), mesh.x);
-  const std::size_t np = out.points.size(), ncomp = out.components.size();
-  std::vector<Eigen::MatrixXd> raw(ncomp, Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p));
-  for (std::size_t s = 0; s < np; ++s) {
-    const auto& pt = out.points[s];
-    const int i = node(std::clamp(pt[0], 0.0, model_.length));
-    for (Eigen::Index u = 0; u < p; ++u) {
-      const Deflection d = model_.section_response(q[u][i], pt[1]);
-      for (std::size_t k = 0; k < ncomp; ++k)
-        raw[k](static_cast<Eigen::Index>(s), u) = component(d, out.components[k]);
-    }
-  }
-  // My: the section's moment about y of the field forces f = sigma W^-T f_c (the class line's
-  // scaled forces back to the fields, as the reactions'), with the rigid rotation theta_y's column
-  // of the fields; sagging positive.
-  Eigen::MatrixXd raw_m;
-  if (moments) {
-    const Eigen::RowVectorXd row = -c.sigma * model_.rigid_motions.col(4).transpose() * c.Winv.transpose();
-    raw_m = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(np), p);
-    for (std::size_t s = 0; s < np; ++s) {
-      const int i = node(std::clamp(out.points[s][0], 0.0, model_.length));
-      raw_m.row(static_cast<Eigen::Index>(s)) = row * Y[fine_of[static_cast<std::size_t>(i)]].bottomRows(mc);
-    }
-  }
-  for (Eigen::Index j = 0; j < p; ++j) {
-    const std::size_t mode = which[static_cast<std::size_t>(j)];
-    if (moments) {
-      const Eigen::VectorXd col = raw_m * Cb.col(j);
-      out.moments[mode].assign(col.data(), col.data() + col.size());
-    }
-    auto& vals = out.values[mode];
-    vals.assign(ncomp, std::vector<double>(np, 0.0));
-    for (std::size_t k = 0; k < ncomp; ++k) {
-      const Eigen::VectorXd col = raw[k] * Cb.col(j);
-      for (std::size_t s = 0; s < np; ++s) vals[k][s] = col[static_cast<Eigen::Index>(s)];
-    }
-    out.generalized_mass[mode] = Gn(j, j);
-    for (int dir = 0; dir < 3; ++dir) out.participation[mode][dir] = Gamman(j, dir);
-  }
+  return V;
 }
 
 }  // namespace modalbench::dtfm

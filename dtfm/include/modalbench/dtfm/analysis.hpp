@@ -239,6 +239,8 @@ class LineAnalysis {
   void cluster_shapes(ClassLine& c, double lambda, const std::vector<std::size_t>& which,
                       const std::vector<double>& xs, const Eigen::MatrixXd& translations, bool moments,
                       ModeShapes& out);
+  /// The null space of c's K at lambda on mesh, p vectors, by inverse iteration (shapes.cpp).
+  Eigen::MatrixXd shape_null_space(ClassLine& c, double lambda, const Mesh& mesh, Eigen::Index p);
 };
 
 }  // namespace modalbench::dtfm
