@@ -166,7 +166,6 @@ struct Capability {
 
 class Solver;
 namespace detail {
-class SolvePipeline;
 void run_kernels(const Solver&, const Scene&, const Discretization&, const Options&, Result&, std::string*);
 }  // namespace detail
 
@@ -198,8 +197,7 @@ class Solver {
   Result solve_default(const Scene& scene, Options options) const;
 
  protected:
-  // solve()'s steps build the model and run its kernels.
-  friend class detail::SolvePipeline;
+  // solve()'s kernel step (core/src/solve_kernels.cpp) builds the model and runs its kernels.
   friend void detail::run_kernels(const Solver&, const Scene&, const Discretization&, const Options&, Result&,
                                   std::string*);
   /// The back-end's model of `scene` on `mesh` (options.resolved is filled), with its kernels;
