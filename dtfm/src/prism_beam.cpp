@@ -19,15 +19,22 @@ const char* dof_name(int d) {
 
 Eigen::Vector3d point(double y, double z) { return Eigen::Vector3d(0.0, y, z); }
 
-}  // namespace
+/// The section's division: ny x nz prisms of dy x dz, numbered row (z) by row.
+struct Grid {
+  int ny = 1, nz = 1;
+  double dy = 0, dz = 0;
+  int prism_at(int iy, int iz) const { return iz * ny + iy; }
+};
 
-PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& opt) {
-  PrismModel mdl;
-  mdl.kind = SceneKind::Beam;
-  mdl.layers = opt.layers;
-  const double L = s.geometry.length, Bw = s.geometry.width, Hh = s.geometry.height;
-  const auto& mat = s.material;
-  int ny = ny_req;
+/// The spring layers' moduli (plane stress across a layer for the consistent model).
+struct LayerModuli {
+  double G = 0, Gs = 0, En = 0, nu = 0;
+  bool consistent = false;
+};
+
+/// The fields each prism carries under the scene's physics; a plane problem keeps one prism
+/// across the width (`ny`, with a note). Throws where a section other than a rectangle is cut.
+std::vector<int> beam_fields(const Scene& s, int ny_req, int nz, int& ny, PrismModel& mdl) {
   std::vector<int> active;
   if (s.physics == Physics::Lateral) {
     // A rotor's lateral model: one prism (build_model refuses a cut section), bending in both planes.
@@ -48,21 +55,17 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
                      fmt::format("a {} section is one prism (1x1): dtfm cuts only rectangular sections into prisms "
                                  "(got {}x{})",
                                  to_string(s.cross_section.shape), ny_req, nz));
-  mdl.length = L;
-  mdl.ny = ny;
-  mdl.nz = nz;
-  const double dy = Bw / ny, dz = Hh / nz;
-  Assembly as(mdl);
-  for (int iz = 0; iz < nz; ++iz)
-    for (int iy = 0; iy < ny; ++iy)
-      as.add_prism({-Bw / 2 + (iy + 0.5) * dy, -Hh / 2 + (iz + 0.5) * dz, dy, dz}, active);
-  as.allocate();
-  auto prism_at = [&](int iy, int iz) { return iz * ny + iy; };
+  return active;
+}
 
+/// Each prism's stiffness and mass per slot, and its section weights.
+void prism_operators(const Scene& s, const ModelOptions& opt, const Grid& g, PrismModel& mdl, Assembly& as) {
+  const auto& mat = s.material;
+  const int ny = g.ny, nz = g.nz;
   const bool eb = s.theory == Theory::EulerBernoulli;
   const bool paper = opt.layers == LayerModel::Paper;
   // One prism is the whole section, whatever its shape; more cut a rectangle into rectangles.
-  const Section sec = ny * nz == 1 ? s.section() : rectangular_section(dy, dz);
+  const Section sec = ny * nz == 1 ? s.section() : rectangular_section(g.dy, g.dz);
   const double E = mat.E, G = mat.G, rho = mat.rho, kap = mat.kappa;
   // Shear of a prism in a plane across which the section is cut: the layers resolve the
   // shear-stress distribution there, so no shear coefficient (Consistent) or no prism shear
@@ -83,7 +86,68 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
     for (int d = 0; d < 6; ++d)
       if (as.at(p, d) >= 0) mdl.section_weights(as.at(p, d), as.at(p, d)) = w[d];
   }
+}
 
+/// The spring layer between neighbouring prisms a and b (normal_z: across z), with the consistent
+/// model's cross terms.
+void add_layer(PrismModel& mdl, Assembly& as, const LayerModuli& lm, int a, int b, bool normal_z) {
+  const double G = lm.G, Gs = lm.Gs, En = lm.En, nu = lm.nu;
+  const double gauss = 0.5 / std::sqrt(3.0);
+  const auto& ga = mdl.prisms[a];
+  const auto& gb = mdl.prisms[b];
+  const Eigen::Vector3d ca = point(ga.y, ga.z), cb = point(gb.y, gb.z);
+  const Eigen::Vector3d P = 0.5 * (ca + cb);
+  const double delta = (cb - ca).norm();
+  const double t = normal_z ? ga.width : ga.height;  // the layer's extent in the section
+  Vector6d k;
+  if (normal_z) k << Gs * t / delta, Gs * t / delta, En * t / delta, En * t * t * t / (12 * delta), 0.0,
+      G * t * t * t / (12 * delta);
+  else k << Gs * t / delta, En * t / delta, Gs * t / delta, En * t * t * t / (12 * delta),
+      G * t * t * t / (12 * delta), 0.0;
+  as.scatter(mdl.Q1, a, b, sde_stiffness(P - ca, P - cb, Eigen::Matrix3d::Identity(), k));
+  if (!lm.consistent) return;
+  // Cross terms, integrated over the layer by 2-point Gauss (exact: every factor is linear
+  // in s): G int (x-jump)(mean out-of-plane shear of the prisms) ds, and the Poisson terms
+  // E' nu int (normal jump)(mean eps_xx) ds + 1/2 E' nu^2 delta int (mean eps_xx)^2 ds.
+  Eigen::MatrixXd X12 = Eigen::MatrixXd::Zero(12, 12), P12 = Eigen::MatrixXd::Zero(12, 12);
+  const int normal = normal_z ? Uz : Uy;
+  for (double sg : {-gauss * t, gauss * t}) {
+    const Eigen::Vector3d Pg = P + (normal_z ? Eigen::Vector3d(0, sg, 0) : Eigen::Vector3d(0, 0, sg));
+    Eigen::Matrix<double, 1, 12> Jx, Jn;
+    const Matrix6d Da = attachment(Pg - ca), Db = attachment(Pg - cb);
+    Jx.leftCols<6>() = -Da.row(Ux);
+    Jx.rightCols<6>() = Db.row(Ux);
+    Jn.leftCols<6>() = -Da.row(normal);
+    Jn.rightCols<6>() = Db.row(normal);
+    Eigen::Matrix<double, 12, 1> Es = Eigen::Matrix<double, 12, 1>::Zero(), Ex = Es;
+    for (int side = 0; side < 2; ++side) {
+      const auto& g = side == 0 ? ga : gb;
+      const int o = 6 * side;
+      if (normal_z) {  // gamma_xz(y) = w' + theta_y + theta_x' (y - y_c)
+        Es[o + Uz] = 0.5;
+        Es[o + Rx] = 0.5 * (Pg.y() - g.y);
+      } else {  // gamma_xy(z) = v' - theta_z - theta_x' (z - z_c)
+        Es[o + Uy] = 0.5;
+        Es[o + Rx] = -0.5 * (Pg.z() - g.z);
+      }
+      // eps_xx(y, z) = u' + theta_y' (z - z_c) - theta_z' (y - y_c)
+      Ex[o + Ux] = 0.5;
+      Ex[o + Ry] = 0.5 * (Pg.z() - g.z);
+      Ex[o + Rz] = -0.5 * (Pg.y() - g.y);
+    }
+    const double w = 0.5 * t;
+    X12 += G * w * Es * Jx + En * nu * w * Ex * Jn;
+    P12 += En * nu * nu * delta * w * Ex * Ex.transpose();
+  }
+  as.scatter(mdl.X, a, b, X12);
+  as.scatter(as.P, a, b, P12);
+}
+
+/// The spring layers between all neighbouring prisms.
+void add_layers(const Scene& s, const ModelOptions& opt, const Grid& g, PrismModel& mdl, Assembly& as) {
+  const auto& mat = s.material;
+  const bool paper = opt.layers == LayerModel::Paper;
+  const double E = mat.E, G = mat.G, kap = mat.kappa;
   // Spring layers between neighbours (Eq. (25) from the attachment kinematics) and, for the
   // consistent model, the cross terms of gamma_xz (z-layers) and gamma_xy (y-layers) and the
   // Poisson coupling. Normal strains split exactly as (plane stress across the layer)
@@ -91,67 +155,36 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
   // the prisms keep the first term, the layer the second (with eps_xx the prisms' mean at the
   // layer), so a free lateral surface relaxes to uniaxial stress and a clamp stiffens.
   const bool consistent = opt.layers == LayerModel::Consistent;
-  const double Gs = paper ? kap * G : G;
-  const double En = consistent ? E / (1.0 - mat.nu * mat.nu) : E;
-  const double nu = consistent ? mat.nu : 0.0;
-  const double gauss = 0.5 / std::sqrt(3.0);
-  auto layer = [&](int a, int b, bool normal_z) {
-    const auto& ga = mdl.prisms[a];
-    const auto& gb = mdl.prisms[b];
-    const Eigen::Vector3d ca = point(ga.y, ga.z), cb = point(gb.y, gb.z);
-    const Eigen::Vector3d P = 0.5 * (ca + cb);
-    const double delta = (cb - ca).norm();
-    const double t = normal_z ? ga.width : ga.height;  // the layer's extent in the section
-    Vector6d k;
-    if (normal_z) k << Gs * t / delta, Gs * t / delta, En * t / delta, En * t * t * t / (12 * delta), 0.0,
-        G * t * t * t / (12 * delta);
-    else k << Gs * t / delta, En * t / delta, Gs * t / delta, En * t * t * t / (12 * delta),
-        G * t * t * t / (12 * delta), 0.0;
-    as.scatter(mdl.Q1, a, b, sde_stiffness(P - ca, P - cb, Eigen::Matrix3d::Identity(), k));
-    if (!consistent) return;
-    // Cross terms, integrated over the layer by 2-point Gauss (exact: every factor is linear
-    // in s): G int (x-jump)(mean out-of-plane shear of the prisms) ds, and the Poisson terms
-    // E' nu int (normal jump)(mean eps_xx) ds + 1/2 E' nu^2 delta int (mean eps_xx)^2 ds.
-    Eigen::MatrixXd X12 = Eigen::MatrixXd::Zero(12, 12), P12 = Eigen::MatrixXd::Zero(12, 12);
-    const int normal = normal_z ? Uz : Uy;
-    for (double sg : {-gauss * t, gauss * t}) {
-      const Eigen::Vector3d Pg = P + (normal_z ? Eigen::Vector3d(0, sg, 0) : Eigen::Vector3d(0, 0, sg));
-      Eigen::Matrix<double, 1, 12> Jx, Jn;
-      const Matrix6d Da = attachment(Pg - ca), Db = attachment(Pg - cb);
-      Jx.leftCols<6>() = -Da.row(Ux);
-      Jx.rightCols<6>() = Db.row(Ux);
-      Jn.leftCols<6>() = -Da.row(normal);
-      Jn.rightCols<6>() = Db.row(normal);
-      Eigen::Matrix<double, 12, 1> Es = Eigen::Matrix<double, 12, 1>::Zero(), Ex = Es;
-      for (int side = 0; side < 2; ++side) {
-        const auto& g = side == 0 ? ga : gb;
-        const int o = 6 * side;
-        if (normal_z) {  // gamma_xz(y) = w' + theta_y + theta_x' (y - y_c)
-          Es[o + Uz] = 0.5;
-          Es[o + Rx] = 0.5 * (Pg.y() - g.y);
-        } else {  // gamma_xy(z) = v' - theta_z - theta_x' (z - z_c)
-          Es[o + Uy] = 0.5;
-          Es[o + Rx] = -0.5 * (Pg.z() - g.z);
-        }
-        // eps_xx(y, z) = u' + theta_y' (z - z_c) - theta_z' (y - y_c)
-        Ex[o + Ux] = 0.5;
-        Ex[o + Ry] = 0.5 * (Pg.z() - g.z);
-        Ex[o + Rz] = -0.5 * (Pg.y() - g.y);
-      }
-      const double w = 0.5 * t;
-      X12 += G * w * Es * Jx + En * nu * w * Ex * Jn;
-      P12 += En * nu * nu * delta * w * Ex * Ex.transpose();
+  LayerModuli lm;
+  lm.G = G;
+  lm.Gs = paper ? kap * G : G;
+  lm.En = consistent ? E / (1.0 - mat.nu * mat.nu) : E;
+  lm.nu = consistent ? mat.nu : 0.0;
+  lm.consistent = consistent;
+  for (int iz = 0; iz < g.nz; ++iz)
+    for (int iy = 0; iy < g.ny; ++iy) {
+      if (iy + 1 < g.ny) add_layer(mdl, as, lm, g.prism_at(iy, iz), g.prism_at(iy + 1, iz), false);
+      if (iz + 1 < g.nz) add_layer(mdl, as, lm, g.prism_at(iy, iz), g.prism_at(iy, iz + 1), true);
     }
-    as.scatter(mdl.X, a, b, X12);
-    as.scatter(as.P, a, b, P12);
-  };
-  for (int iz = 0; iz < nz; ++iz)
-    for (int iy = 0; iy < ny; ++iy) {
-      if (iy + 1 < ny) layer(prism_at(iy, iz), prism_at(iy + 1, iz), false);
-      if (iz + 1 < nz) layer(prism_at(iy, iz), prism_at(iy, iz + 1), true);
-    }
-  as.finish_compliance();
+}
 
+/// The end condition of support sp: a rigid end plate over the model's rigid motions `motions`.
+EndCondition beam_end(const Support& sp, const char* where, const std::vector<int>& motions, const PrismModel& mdl) {
+  const int m = mdl.m;
+  if (sp.is_free()) return make_end(Eigen::MatrixXd(m, 0), {}, false, m, std::string(where) + ": free");
+  const double springs[6] = {sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational,
+                             sp.rotational};
+  Eigen::MatrixXd T(m, static_cast<Eigen::Index>(motions.size()));
+  std::vector<double> k;
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    T.col(static_cast<Eigen::Index>(i)) = mdl.rigid_motions.col(motions[i]);
+    k.push_back(springs[motions[i]]);
+  }
+  return make_end(T, k, true, m, std::string(where) + ": " + sp.kind + " (rigid end plate)");
+}
+
+/// The section's rigid motions over the fields and the two ends' conditions.
+void beam_ends(const Scene& s, int nz, PrismModel& mdl) {
   // Rigid section motions (about the centroid) over the fields: D(c_i) rows of active slots.
   const int m = mdl.m;
   mdl.rigid_motions = Eigen::MatrixXd::Zero(m, 6);
@@ -165,42 +198,37 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
   else if (s.physics == Physics::Lateral) motions = {1, 2, 4, 5};
   else if (s.physics == Physics::Bending && nz == 1) motions = {2, 4};
   else motions = {0, 2, 4};
-  auto end = [&](const Support& sp, const char* where) {
-    if (sp.is_free()) return make_end(Eigen::MatrixXd(m, 0), {}, false, m, std::string(where) + ": free");
-    const double springs[6] = {sp.axial, sp.translational, sp.translational, sp.torsional, sp.rotational,
-                               sp.rotational};
-    Eigen::MatrixXd T(m, static_cast<Eigen::Index>(motions.size()));
-    std::vector<double> k;
-    for (std::size_t i = 0; i < motions.size(); ++i) {
-      T.col(static_cast<Eigen::Index>(i)) = mdl.rigid_motions.col(motions[i]);
-      k.push_back(springs[motions[i]]);
-    }
-    return make_end(T, k, true, m, std::string(where) + ": " + sp.kind + " (rigid end plate)");
-  };
-  mdl.ends[0] = end(s.x0, "x0");
-  mdl.ends[1] = end(s.xL, "xL");
+  mdl.ends[0] = beam_end(s.x0, "x0", motions, mdl);
+  mdl.ends[1] = beam_end(s.xL, "xL", motions, mdl);
+}
 
+/// Adds the section's reflection z -> -z (about_z) or y -> -y where it acts on the active fields;
+/// whether it does.
+bool add_reflection(bool about_z, const Grid& grid, const Assembly& as, PrismModel& mdl) {
+  static const int sz[6] = {+1, +1, -1, -1, -1, +1};  // z -> -z: w, theta_x, theta_y flip
+  static const int sy[6] = {+1, -1, +1, -1, +1, -1};  // y -> -y: v, theta_x, theta_z flip
+  const int m = mdl.m, ny = grid.ny, nz = grid.nz;
+  Reflection R;
+  R.perm.resize(m);
+  R.sign.resize(m);
+  bool nontrivial = false;
+  for (int k = 0; k < m; ++k) {
+    const int p = mdl.field_prism[k], d = mdl.field_dof[k];
+    const int iy = p % ny, iz = p / ny;
+    const int q = about_z ? grid.prism_at(iy, nz - 1 - iz) : grid.prism_at(ny - 1 - iy, iz);
+    R.perm[k] = as.at(q, d);
+    R.sign[k] = about_z ? sz[d] : sy[d];
+    nontrivial = nontrivial || R.perm[k] != k || R.sign[k] < 0;
+  }
+  if (nontrivial) mdl.reflections.push_back(R);
+  return nontrivial;
+}
+
+/// The section's reflections and the symmetry classes they split the fields into, by family.
+void beam_symmetry(const Grid& grid, const Assembly& as, PrismModel& mdl) {
   // Reflections z -> -z and y -> -y (only those that act on the active fields).
-  auto reflection = [&](bool about_z) {
-    static const int sz[6] = {+1, +1, -1, -1, -1, +1};  // z -> -z: w, theta_x, theta_y flip
-    static const int sy[6] = {+1, -1, +1, -1, +1, -1};  // y -> -y: v, theta_x, theta_z flip
-    Reflection R;
-    R.perm.resize(m);
-    R.sign.resize(m);
-    bool nontrivial = false;
-    for (int k = 0; k < m; ++k) {
-      const int p = mdl.field_prism[k], d = mdl.field_dof[k];
-      const int iy = p % ny, iz = p / ny;
-      const int q = about_z ? prism_at(iy, nz - 1 - iz) : prism_at(ny - 1 - iy, iz);
-      R.perm[k] = as.at(q, d);
-      R.sign[k] = about_z ? sz[d] : sy[d];
-      nontrivial = nontrivial || R.perm[k] != k || R.sign[k] < 0;
-    }
-    if (nontrivial) mdl.reflections.push_back(R);
-    return nontrivial;
-  };
-  const bool has_y = reflection(false);
-  const bool has_z = reflection(true);
+  const bool has_y = add_reflection(false, grid, as, mdl);
+  const bool has_z = add_reflection(true, grid, as, mdl);
   if (!reflections_commute(mdl)) {
     mdl.reflections.clear();
     mdl.notes.push_back("section reflections do not commute with the operator: no symmetry split");
@@ -224,18 +252,51 @@ PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& op
     else { fam.push_back(ModeFamily::Torsion); rigid_cols.push_back({3}); }
   }
   build_classes(mdl, fam, rigid_cols);
+}
 
+/// The model's description and its eigenvalue and translation scales.
+void describe_beam(const Scene& s, const ModelOptions& opt, const Grid& g, const std::vector<int>& active,
+                   PrismModel& mdl) {
+  const double L = s.geometry.length, Bw = s.geometry.width, Hh = s.geometry.height;
+  const double E = s.material.E, rho = s.material.rho;
+  const bool eb = s.theory == Theory::EulerBernoulli;
   std::string fields;
   for (int d : active) fields += (fields.empty() ? "" : ", ") + std::string(dof_name(d));
   const char* planes = s.physics == Physics::Spatial   ? "spatial"
                        : s.physics == Physics::Lateral ? "lateral: x-z and x-y"
                                                        : "plane x-z";
-  mdl.description = fmt::format("{}x{} prisms ({}; {} per prism: {}), {} layers, {} prisms", ny, nz, planes,
+  mdl.description = fmt::format("{}x{} prisms ({}; {} per prism: {}), {} layers, {} prisms", g.ny, g.nz, planes,
                                 active.size(), fields, to_string(opt.layers), eb ? "Euler-Bernoulli" : "Timoshenko");
   const double Iy = Bw * Hh * Hh * Hh / 12.0, Iz = Hh * Bw * Bw * Bw / 12.0;
   const double Imin = carries_xy(s.physics) ? std::min(Iy, Iz) : Iy;
   mdl.lambda_scale = std::pow(std::numbers::pi / L, 4) * E * Imin / (rho * Bw * Hh);
-  mdl.translation_scale = std::min(dz, carries_xy(s.physics) ? dy : dz);
+  mdl.translation_scale = std::min(g.dz, carries_xy(s.physics) ? g.dy : g.dz);
+}
+
+}  // namespace
+
+PrismModel build_beam(const Scene& s, int ny_req, int nz, const ModelOptions& opt) {
+  PrismModel mdl;
+  mdl.kind = SceneKind::Beam;
+  mdl.layers = opt.layers;
+  const double L = s.geometry.length, Bw = s.geometry.width, Hh = s.geometry.height;
+  int ny = ny_req;
+  const std::vector<int> active = beam_fields(s, ny_req, nz, ny, mdl);
+  mdl.length = L;
+  mdl.ny = ny;
+  mdl.nz = nz;
+  const Grid g{ny, nz, Bw / ny, Hh / nz};
+  Assembly as(mdl);
+  for (int iz = 0; iz < nz; ++iz)
+    for (int iy = 0; iy < ny; ++iy)
+      as.add_prism({-Bw / 2 + (iy + 0.5) * g.dy, -Hh / 2 + (iz + 0.5) * g.dz, g.dy, g.dz}, active);
+  as.allocate();
+  prism_operators(s, opt, g, mdl, as);
+  add_layers(s, opt, g, mdl, as);
+  as.finish_compliance();
+  beam_ends(s, nz, mdl);
+  beam_symmetry(g, as, mdl);
+  describe_beam(s, opt, g, active, mdl);
   return mdl;
 }
 

@@ -231,6 +231,8 @@ class LineAnalysis {
     std::vector<std::pair<double, double>> enclosures;
   };
   NearRigid near_rigid(ClassLine& c, int below);
+  /// A lower bound on the lowest eigenvalue of c's line held at rl's anchors (analysis_near_rigid.cpp).
+  double anchored_lowest(ClassLine& c0, const detail::RigidLine& rl, const std::vector<double>& ritz, int n_near);
   /// Adds to `react` (per node x, over the fields) the supports' actions of one class's static
   /// solution: K d - f on the held coordinates, -k d of the springs (analysis_response.cpp).
   void add_reactions(const ClassLine& c, const Mesh& mesh, const detail::RigidLine* rl, const Eigen::VectorXd& d,
