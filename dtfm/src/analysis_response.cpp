@@ -231,6 +231,38 @@ std::vector<std::optional<SegmentLoad>> segment_loads(const LineAnalysis::ClassL
   return out;
 }
 
+/// Each class's share of the loads (physical units): the squared norm of their projection on its
+/// fields; `total` gets their sum. (`Lines`: LineAnalysis's class lines.)
+template <class Lines>
+std::vector<double> class_shares(const Lines& lines, const PrismModel& model,
+                                 const std::vector<PointLoad>& loads, const std::vector<DistributedLoad>& distributed,
+                                 double& total) {
+  std::vector<double> share(lines.size(), 0.0);
+  for (std::size_t ci = 0; ci < lines.size(); ++ci) {
+    for (const auto& p : loads) share[ci] += (lines[ci]->W.transpose() * model.load_vector(p)).squaredNorm();
+    for (const auto& d : distributed)
+      for (double x : {d.from[0], d.to[0]}) {
+        const double L = model.length;
+        share[ci] += (lines[ci]->W.transpose() * density(model, {d}, x, x == d.from[0] ? L : 0.0)).squaredNorm() * L * L;
+      }
+    total += share[ci];
+  }
+  return share;
+}
+
+/// The supports' actions on the fields, per node, as the section's forces and moments.
+std::vector<PointReaction> point_reactions(const PrismModel& model, const std::map<double, Eigen::VectorXd>& react) {
+  std::vector<PointReaction> out;
+  for (const auto& [xr, fields] : react) {
+    PointReaction pr;
+    pr.x = xr;
+    const Eigen::VectorXd F = model.rigid_motions.transpose() * fields;
+    for (int k = 0; k < 6; ++k) pr.F[static_cast<std::size_t>(k)] = F[k];
+    out.push_back(pr);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& loads,
@@ -254,17 +286,8 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
     *integrals = FieldIntegrals{};
     for (Eigen::VectorXd* v : {&integrals->q, &integrals->xq, &integrals->q0, &integrals->qL}) *v = Eigen::VectorXd::Zero(m);
   }
-  std::vector<double> share(lines_.size(), 0.0);
   double total_share = 0;
-  for (std::size_t ci = 0; ci < lines_.size(); ++ci) {
-    for (const auto& p : loads) share[ci] += (lines_[ci]->W.transpose() * model_.load_vector(p)).squaredNorm();
-    for (const auto& d : distributed)
-      for (double x : {d.from[0], d.to[0]}) {
-        const double L = model_.length;
-        share[ci] += (lines_[ci]->W.transpose() * density(model_, {d}, x, x == d.from[0] ? L : 0.0)).squaredNorm() * L * L;
-      }
-    total_share += share[ci];
-  }
+  const std::vector<double> share = class_shares(lines_, model_, loads, distributed, total_share);
   // Without any load every class is judged as loaded: zero is no answer for a mechanism, whose
   // rigid motions are then undetermined (the other back-ends refuse it too; fuzz seed 7, case 1532).
   const bool unloaded = !(total_share > 0);
@@ -339,16 +362,7 @@ std::vector<Deflection> LineAnalysis::statics(const std::vector<PointLoad>& load
       detail::integrate_fields(c, x, mesh.h_base, d, f, seg_loads, *integrals);
     }
   }
-  if (reactions) {
-    reactions->clear();
-    for (const auto& [xr, fields] : react) {
-      PointReaction pr;
-      pr.x = xr;
-      const Eigen::VectorXd F = model_.rigid_motions.transpose() * fields;
-      for (int k = 0; k < 6; ++k) pr.F[static_cast<std::size_t>(k)] = F[k];
-      reactions->push_back(pr);
-    }
-  }
+  if (reactions) *reactions = point_reactions(model_, react);
   std::vector<Deflection> out;
   for (std::size_t j = 0; j < probes.size(); ++j) {
     Deflection d = model_.section_response(qp[j], probes[j][1]);
