@@ -52,7 +52,8 @@ void Summary::note_backward_error(double e) {
 
 void note_frf_omissions(Summary& sum, int skipped, int points, const std::string& reason) {
   if (skipped <= 0) return;
-  if (skipped <= 2) {
+  // One or two samples on a natural frequency are the request's bad luck; all of them is no FRF.
+  if (skipped <= 2 && skipped < points) {
     sum.warnings.push_back(fmt::format("FRF: {} of {} sample(s) omitted (singular dynamic stiffness: on or within "
                                        "rounding of a natural frequency; {})", skipped, points, reason));
     return;

@@ -170,7 +170,11 @@ std::string solve_frf(const Scene& s, const Model& model, const System& sys, con
               "FRF: excitation and observation at one point of a Mindlin plate: the receptance is infinite "
               "(logarithmic singularity of the point load)");
   for (std::size_t i = 0; i < res.omega.size(); ++i) r.frf.push_back({res.omega[i], res.receptance[i] + singular});
-  if (res.skipped > 0)
+  if (res.skipped > 0 && res.omega.empty())
+    sum.raise(Status::NumericalIssue,
+              fmt::format("FRF: all {} sample(s) omitted (singular: on a natural frequency, or w = 0 of a free body)",
+                          res.skipped));
+  else if (res.skipped > 0)
     sum.warnings.push_back(
         fmt::format("FRF: {} sample(s) omitted (singular: on a natural frequency, or w = 0 of a free body)", res.skipped));
   return res.method;

@@ -181,3 +181,17 @@ BOOST_AUTO_TEST_CASE(the_default_path_starts_from_the_family_and_refines) {
   const double n = std::stoi(r.summary.mesh);
   BOOST_TEST(r.frequencies_rad_s.at(0) == 100.0 * (1.0 + 1.0 / (n * n)));
 }
+
+// An FRF asked and none computed is not a success (the fuzzer's find: a 1e13 m Mindlin plate on
+// dtfm, both samples beyond the model's count range, reported success with an empty FRF); one or
+// two samples of several on a resonance stay a warning.
+BOOST_AUTO_TEST_CASE(an_frf_with_every_sample_omitted_is_a_numerical_issue) {
+  Summary all;
+  note_frf_omissions(all, 2, 2, "beyond the model's range");
+  BOOST_TEST((all.status == Status::NumericalIssue));
+  BOOST_TEST(all.message.find("2 of 2") != std::string::npos);
+  Summary some;
+  note_frf_omissions(some, 2, 50, "on a resonance");
+  BOOST_TEST((some.status == Status::Success));
+  BOOST_TEST(some.warnings.size() == 1u);
+}

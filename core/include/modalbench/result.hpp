@@ -315,7 +315,8 @@ struct Summary {
 
 /// Records FRF samples that could not be computed: up to two are omitted with a warning (on or
 /// within rounding of a natural frequency, K(omega) is singular); more cannot all be resonances,
-/// and make the result numerical-issue with `reason` (the first failure, in words).
+/// and make the result numerical-issue with `reason` (the first failure, in words), as does
+/// omitting every sample asked (an FRF requested and none reported is not a success).
 void note_frf_omissions(Summary& sum, int skipped, int points, const std::string& reason);
 
 struct Result {
