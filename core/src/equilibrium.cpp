@@ -32,13 +32,11 @@ InternalForces free_body_forces(const Scene& s, const std::vector<Reaction>& rea
     if (acts(r.position[0])) body.add(r.position[0], r.force, r.moment);
   for (const PointLoad& p : s.all_point_loads())
     if (acts(p.x)) body.add(p.x, {p.Fx, p.Fy, p.Fz}, {p.Mx, p.My, p.Mz});
-  // Linear intensities over [lo, hi]: 2-point Gauss integrates the force and its moment exactly.
+  // The intensities over [lo, hi]: Gauss integrates the force and its moment (load_gauss_points).
   for (const DistributedLoad& q : s.all_distributed_loads()) {
     const double lo = q.from[0], hi = std::min(q.to[0], x);
-    if (!(hi > lo)) continue;
-    const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo), off = half / std::sqrt(3.0);
-    for (double at : {mid - off, mid + off})
-      body.add(at, {q.at(q.qx, at) * half, q.at(q.qy, at) * half, q.at(q.qz, at) * half}, {});
+    for (const auto& [at, w] : load_gauss_points(q, lo, hi))
+      body.add(at, {q.at(q.qx, at) * w, q.at(q.qy, at) * w, q.at(q.qz, at) * w}, {});
   }
   // The cut exerts -F and -M on the left part; the conventions of result.hpp then give:
   InternalForces f;

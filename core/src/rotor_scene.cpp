@@ -7,10 +7,11 @@
 namespace modalbench {
 
 bool axisymmetric_shaft(const Scene& s) {
-  for (const Segment& p : s.beam_pieces()) {
-    const Section sec = p.properties();
-    if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz)) return false;
-  }
+  for (const Segment& p : s.beam_pieces())
+    for (double x : {p.x_from, 0.5 * (p.x_from + p.x_to), p.x_to}) {  // a tapered piece at its ends and middle
+      const Section sec = p.properties_at(x);
+      if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz)) return false;
+    }
   return true;
 }
 

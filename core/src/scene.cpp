@@ -66,8 +66,12 @@ Section rectangular_section(double width, double height) {
   // Saint-Venant constant of a rectangle (long side c, short side t):
   // J = c t^3 / 3 * (1 - 192 t / (pi^5 c) * sum_{n odd} tanh(n pi c / (2 t)) / n^5).
   const double c = std::max(width, height), t = std::min(width, height);
+  // (n^5 is exact in double for these n, as pow gives it; tanh rounds to 1 beyond 19.1.)
   double sum = 0;
-  for (int n = 1; n < 200; n += 2) sum += std::tanh(n * std::numbers::pi * c / (2 * t)) / std::pow(n, 5);
+  for (int n = 1; n < 200; n += 2) {
+    const double arg = n * std::numbers::pi * c / (2 * t), n5 = static_cast<double>(n) * n * n * n * n;
+    sum += (arg > 20.0 ? 1.0 : std::tanh(arg)) / n5;
+  }
   s.J = c * t * t * t / 3.0 * (1.0 - 192.0 * t / (std::pow(std::numbers::pi, 5) * c) * sum);
   return s;
 }
@@ -91,6 +95,51 @@ Section section_properties(const Geometry& g, const SectionSpec& sp) {
     case SectionShape::General: return Section{sp.A, sp.Iy, sp.Iz, sp.J, sp.Iy + sp.Iz};
   }
   return rectangular_section(g.width, g.height);
+}
+
+std::string to_string(Profile p) { return p == Profile::Linear ? "linear" : "exponential"; }
+
+namespace {
+
+/// A dimension at the fraction t of a piece: d0 at 0, d1 at 1, by the profile (d0 == d1 stays d0).
+double vary(Profile p, double d0, double d1, double t) {
+  if (d0 == d1) return d0;
+  return p == Profile::Linear ? d0 + (d1 - d0) * t : d0 * std::pow(d1 / d0, t);
+}
+
+}  // namespace
+
+Section Segment::properties() const {
+  if (end) throw std::logic_error("Segment::properties() of a tapered piece: its section varies (properties_at)");
+  return section_properties({x_to - x_from, width, height}, section);
+}
+
+Section Segment::properties_at(double x) const {
+  if (!end) return properties();
+  const double t = std::clamp((x - x_from) / (x_to - x_from), 0.0, 1.0);
+  const Profile p = end->profile;
+  const SectionSpec& a = section;
+  const SectionSpec& b = end->section;
+  SectionSpec at = a;
+  at.diameter = vary(p, a.diameter, b.diameter, t);
+  at.inner_diameter = vary(p, a.inner_diameter, b.inner_diameter, t);
+  at.A = vary(p, a.A, b.A, t);
+  at.Iy = vary(p, a.Iy, b.Iy, t);
+  at.Iz = vary(p, a.Iz, b.Iz, t);
+  at.J = vary(p, a.J, b.J, t);
+  return section_properties({x_to - x_from, vary(p, width, end->width, t), vary(p, height, end->height, t)}, at);
+}
+
+double Segment::kappa_at(double x) const {
+  if (!kappa_follows_shape || !end) return material.kappa;
+  const double t = std::clamp((x - x_from) / (x_to - x_from), 0.0, 1.0);
+  const double D = vary(end->profile, section.diameter, end->section.diameter, t);
+  const double d = vary(end->profile, section.inner_diameter, end->section.inner_diameter, t);
+  return cowper_kappa_tube(material.nu, d / D);
+}
+
+bool Scene::has_tapered_pieces() const {
+  return std::any_of(segments.begin(), segments.end(), [](const Segment& p) { return p.tapered(); });
 }
 
 double cowper_kappa_tube(double nu, double m) {
@@ -173,7 +222,40 @@ std::vector<DistributedLoad> Scene::all_distributed_loads() const {
     weight(material.rho * geometry.height, 0.0, geometry.length);
     return out;
   }
-  for (const Segment& p : beam_pieces()) weight(p.material.rho * p.properties().A, p.x_from, p.x_to);
+  for (const Segment& p : beam_pieces()) {
+    if (!p.tapered()) {
+      weight(p.material.rho * p.properties().A, p.x_from, p.x_to);
+      continue;
+    }
+    // A tapered piece: the start's weight per length times A(x) / A(x_from).
+    const double A0 = p.properties_at(p.x_from).A;
+    weight(p.material.rho * A0, p.x_from, p.x_to);
+    out.back().factor = [p, A0](double x) { return p.properties_at(x).A / A0; };
+  }
+  return out;
+}
+
+std::vector<std::pair<double, double>> load_gauss_points(const DistributedLoad& q, double lo, double hi,
+                                                         int parts) {
+  std::vector<std::pair<double, double>> out;
+  if (!(hi > lo)) return out;
+  if (!q.factor) {
+    const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo), off = half / std::sqrt(3.0);
+    return {{mid - off, half}, {mid + off, half}};
+  }
+  // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun 25.4.30).
+  static constexpr std::array<double, 4> node = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                                 0.9602898564975363};
+  static constexpr std::array<double, 4> weight = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                                   0.1012285362903763};
+  for (int k = 0; k < parts; ++k) {
+    const double a = lo + (hi - lo) * k / parts, b = lo + (hi - lo) * (k + 1) / parts;
+    const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      out.emplace_back(mid - half * node[i], half * weight[i]);
+      out.emplace_back(mid + half * node[i], half * weight[i]);
+    }
+  }
   return out;
 }
 

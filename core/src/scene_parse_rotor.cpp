@@ -77,11 +77,14 @@ void scene_detail::validate_rotor(const Reader& r, const Scene& s) {
     r.fail("request.modes", "a rotor needs request.modes >= 1: how many whirl frequencies at each spin");
   if (s.rotor->frame == Rotor::Frame::Stationary)
     for (std::size_t i = 0; i < s.beam_pieces().size(); ++i) {
-      const Section sec = s.beam_pieces()[i].properties();
-      if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz))
-        r.fail("rotor.frame", fmt::format("a shaft whose section has Iy != Iz ({:.6g} and {:.6g} m^4{}) has equations "
-                                          "periodic in time in the stationary frame: use frame = \"rotating\"",
-                                          sec.Iy, sec.Iz, s.is_stepped() ? fmt::format(", segments[{}]", i) : ""));
+      const Segment piece = s.beam_pieces()[i];
+      for (double x : {piece.x_from, piece.x_to}) {  // a tapered piece at both ends
+        const Section sec = piece.properties_at(x);
+        if (std::abs(sec.Iy - sec.Iz) > 1e-12 * std::max(sec.Iy, sec.Iz))
+          r.fail("rotor.frame", fmt::format("a shaft whose section has Iy != Iz ({:.6g} and {:.6g} m^4{}) has equations "
+                                            "periodic in time in the stationary frame: use frame = \"rotating\"",
+                                            sec.Iy, sec.Iz, s.is_stepped() ? fmt::format(", segments[{}]", i) : ""));
+      }
     }
   for (std::size_t i = 0; i < s.masses.size(); ++i)
     if (std::abs(s.masses[i].Jy - s.masses[i].Jz) > 1e-12 * std::max(s.masses[i].Jy, s.masses[i].Jz))

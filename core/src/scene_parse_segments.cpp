@@ -14,44 +14,100 @@ namespace modalbench {
 
 using scene_detail::Reader;
 
+namespace {
+
+/// One dimension of a section: a positive number, or where `end` is given (a piece of [[segments]])
+/// `[start, end]`, both positive (a piece cannot taper to a point: its stiffness would vanish there).
+/// Returns the start value; the end value into *end (the start's for a number).
+double dimension(const Reader& r, const toml::table& t, const std::string& where, const std::string& key,
+                 double* end, bool& varies) {
+  const toml::node* n = t.get(key);
+  const toml::array* a = n ? n->as_array() : nullptr;
+  if (!a) {
+    const double v = r.positive(t, where, key);
+    if (end) *end = v;
+    return v;
+  }
+  const std::string full = where + "." + key;
+  if (!end)
+    r.fail(full, "a section that varies along the beam is written per piece, in [[segments]] (here it is uniform)");
+  if (a->size() != 2 || !a->get(0)->is_number() || !a->get(1)->is_number())
+    r.fail(full, "must be a number or [start, end], two numbers (m, or m^2 and m^4 for a general section)");
+  const double v0 = a->get(0)->value<double>().value(), v1 = a->get(1)->value<double>().value();
+  for (int i = 0; i < 2; ++i) {
+    const double v = i == 0 ? v0 : v1;
+    if (!std::isfinite(v)) r.fail(fmt::format("{}[{}]", full, i), "must be finite");
+    if (!(v > 0))
+      r.fail(fmt::format("{}[{}]", full, i),
+             fmt::format("must be > 0 (got {}): the dimension would reach zero or below inside the piece, where its "
+                         "section vanishes (a taper to a point has no stiffness at its tip: end it at a small tip)",
+                         v));
+  }
+  *end = v1;
+  varies = varies || v0 != v1;
+  return v0;
+}
+
+}  // namespace
+
 void scene_detail::read_section(const Reader& r, const toml::table& t, const std::string& where, SectionSpec& sp,
-                                Geometry& extent) {
+                                Geometry& extent, SectionEnd* end, bool* varies_out) {
   const toml::node* shape_node = t.get("shape");
   if (!shape_node || !shape_node->is_string())
     r.fail(where + ".shape", "missing or not a string (rectangle, circle, tube or general)");
   const std::string shape = shape_node->as_string()->get();
   sp = SectionSpec{};
+  SectionEnd tail;
+  SectionSpec& e = tail.section;
+  double* const no = nullptr;
+  auto dim = [&](const std::string& key, double& at_end, bool& varies) {
+    return dimension(r, t, where, key, end ? &at_end : no, varies);
+  };
+  bool varies = false;
   if (shape == "rectangle") {
     r.only_keys(t, where, {"shape", "width", "height"});
     sp.shape = SectionShape::Rectangle;
-    extent.width = r.positive(t, where, "width");
-    extent.height = r.positive(t, where, "height");
+    extent.width = dim("width", tail.width, varies);
+    extent.height = dim("height", tail.height, varies);
   } else if (shape == "circle") {
     r.only_keys(t, where, {"shape", "diameter"});
     sp.shape = SectionShape::Circle;
-    sp.diameter = r.positive(t, where, "diameter");
+    sp.diameter = dim("diameter", e.diameter, varies);
     extent.width = extent.height = sp.diameter;
+    tail.width = tail.height = e.diameter;
   } else if (shape == "tube") {
     r.only_keys(t, where, {"shape", "outer_diameter", "inner_diameter"});
     sp.shape = SectionShape::Tube;
-    sp.diameter = r.positive(t, where, "outer_diameter");
-    sp.inner_diameter = r.positive(t, where, "inner_diameter");
+    sp.diameter = dim("outer_diameter", e.diameter, varies);
+    sp.inner_diameter = dim("inner_diameter", e.inner_diameter, varies);
+    // Both ends suffice: under one profile the bore ratio d/D is monotone along the piece.
     if (!(sp.inner_diameter < sp.diameter))
       r.fail(where + ".inner_diameter", fmt::format("must be below outer_diameter ({} m; got {} m): a tube has a wall",
                                                     sp.diameter, sp.inner_diameter));
+    if (end && !(e.inner_diameter < e.diameter))
+      r.fail(where + ".inner_diameter",
+             fmt::format("at the piece's end must be below outer_diameter there ({} m; got {} m): the bore would "
+                         "reach the outside inside the piece",
+                         e.diameter, e.inner_diameter));
     extent.width = extent.height = sp.diameter;
+    tail.width = tail.height = e.diameter;
   } else if (shape == "general") {
     r.only_keys(t, where, {"shape", "area", "Iy", "Iz", "J"});
     sp.shape = SectionShape::General;
-    sp.A = r.positive(t, where, "area");
-    sp.Iy = r.positive(t, where, "Iy");
-    sp.Iz = r.positive(t, where, "Iz");
-    sp.J = r.positive(t, where, "J");
+    sp.A = dim("area", e.A, varies);
+    sp.Iy = dim("Iy", e.Iy, varies);
+    sp.Iz = dim("Iz", e.Iz, varies);
+    sp.J = dim("J", e.J, varies);
     extent.height = std::sqrt(12.0 * sp.Iy / sp.A);
     extent.width = sp.A / extent.height;
+    tail.height = std::sqrt(12.0 * e.Iy / e.A);
+    tail.width = e.A / tail.height;
   } else {
     r.fail(where + ".shape", "unknown shape '" + shape + "' (expected rectangle, circle, tube or general)");
   }
+  e.shape = sp.shape;
+  if (end) *end = tail;
+  if (varies_out) *varies_out = varies;
 }
 
 double scene_detail::default_kappa(const Reader& r, const SectionSpec& sp, double nu, Theory theory,
@@ -98,16 +154,28 @@ void scene_detail::read_segment_sections(const Reader& r, const toml::table& roo
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const std::string where = fmt::format("segments[{}]", i);
     const toml::table& t = *arr.get(i)->as_table();
-    r.only_keys(t, where, {"length", "section", "material"});
+    r.only_keys(t, where, {"length", "section", "material", "profile"});
     Segment seg;
     seg.x_from = x;
     x += r.positive(t, where, "length");
     seg.x_to = x;
     if (!t.get("section")) r.fail(where + ".section", "missing: every piece of a stepped beam gives its section");
     Geometry extent;
-    read_section(r, r.table(t, where, "section"), where + ".section", seg.section, extent);
+    SectionEnd end;
+    bool varies = false;
+    read_section(r, r.table(t, where, "section"), where + ".section", seg.section, extent, &end, &varies);
     seg.width = extent.width;
     seg.height = extent.height;
+    if (t.get("profile")) {
+      const std::string p = r.string(t, where, "profile");
+      if (p != "linear" && p != "exponential")
+        r.fail(where + ".profile", "unknown profile '" + p + "' (expected linear or exponential)");
+      if (!varies)
+        r.fail(where + ".profile",
+               "given, but no dimension of the section varies (write one as [start, end] with two different values)");
+      end.profile = p == "linear" ? Profile::Linear : Profile::Exponential;
+    }
+    if (varies) seg.end = end;
     s.segments.push_back(seg);
   }
   // The lengths must add up to the beam's, to rounding of the sum (n pieces: n ulps of L).
@@ -118,8 +186,8 @@ void scene_detail::read_segment_sections(const Reader& r, const toml::table& roo
   // The scene's section is the first piece's (its default kappa); its extent the largest.
   s.cross_section = s.segments.front().section;
   for (const Segment& seg : s.segments) {
-    s.geometry.width = std::max(s.geometry.width, seg.width);
-    s.geometry.height = std::max(s.geometry.height, seg.height);
+    s.geometry.width = std::max({s.geometry.width, seg.width, seg.end ? seg.end->width : 0.0});
+    s.geometry.height = std::max({s.geometry.height, seg.height, seg.end ? seg.end->height : 0.0});
   }
 }
 
@@ -161,6 +229,8 @@ void scene_detail::read_segment_materials(const Reader& r, const toml::table& ro
     if (kappa_given) continue;
     std::string note;
     m.kappa = default_kappa(r, seg.section, m.nu, s.theory, where + ".kappa", note);
+    // A tapered tube's bore ratio may vary: Cowper's coefficient then follows it (Segment::kappa_at).
+    seg.kappa_follows_shape = seg.end && seg.section.shape == SectionShape::Tube;
   }
   s.material = s.segments.front().material;
 }

@@ -104,8 +104,11 @@ Support read_support_node(const Reader& r, const toml::node* n, const std::strin
 // Sections and the pieces of a stepped beam (scene_parse_segments.cpp).
 /// A section table (`where` names it): its SectionSpec, and the extent (width, height) of
 /// the section into `extent` (a rectangle's sides; a circle's or tube's outer diameter; a general
-/// section's equivalent rectangle).
-void read_section(const Reader& r, const toml::table& t, const std::string& where, SectionSpec& sp, Geometry& extent);
+/// section's equivalent rectangle) at its start. With `end` (a piece of [[segments]]), a dimension
+/// may be `[start, end]`: the section at the end into *end, and whether any dimension varies into
+/// *varies; without it, such a dimension fails (a uniform section).
+void read_section(const Reader& r, const toml::table& t, const std::string& where, SectionSpec& sp, Geometry& extent,
+                  SectionEnd* end = nullptr, bool* varies = nullptr);
 /// The default shear coefficient of a section (Cowper's for circles and tubes, from nu; 5/6 for
 /// rectangles); a general section has none: under Timoshenko theory that fails naming `key`, else
 /// 1 (unused). `note` says which was taken.

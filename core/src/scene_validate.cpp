@@ -21,9 +21,12 @@ void validate_segments(const Reader& r, const Scene& s) {
     if (!(seg.x_from == x && seg.x_to > seg.x_from && std::isfinite(seg.x_to)))
       r.fail(key + ".length", "pieces must follow each other from x = 0 with positive lengths");
     x = seg.x_to;
-    const Section p = seg.properties();
-    for (double v : {p.A, p.Iy, p.Iz, p.J, seg.width, seg.height})
-      if (!(std::isfinite(v) && v > 0)) r.fail(key + ".section", "its properties must be finite and > 0");
+    // A tapered piece at both ends (its dimensions are monotone between them).
+    for (double at : {seg.x_from, seg.x_to}) {
+      const Section p = seg.properties_at(at);
+      for (double v : {p.A, p.Iy, p.Iz, p.J, seg.width, seg.height})
+        if (!(std::isfinite(v) && v > 0)) r.fail(key + ".section", "its properties must be finite and > 0");
+    }
     const Material& m = seg.material;
     for (double v : {m.E, m.G, m.rho, m.kappa})
       if (!(std::isfinite(v) && v > 0)) r.fail(key + ".material", "E, G, rho and kappa must be finite and > 0");

@@ -148,9 +148,10 @@ Capability DifferenceEqSolver::supports(const Scene& s) const {
     c.reason = "difference_eq solves beams only (a regular chain of Hermite beam elements); plates are not supported";
     return c;
   }
-  if (s.is_stepped()) {
-    c.reason = "difference_eq cannot model a stepped beam ([[segments]]): its closed forms need a regular chain of "
-               "identical elements";
+  if (s.is_stepped() || s.has_tapered_pieces()) {
+    c.reason = fmt::format("difference_eq cannot model a {} ([[segments]]): its closed forms need a regular chain of "
+                           "identical elements",
+                           s.has_tapered_pieces() ? "tapered piece" : "stepped beam");
     return c;
   }
   c.modes = c.statics = true;

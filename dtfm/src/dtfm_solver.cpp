@@ -14,6 +14,11 @@ namespace modalbench::dtfm {
 
 Capability DtfmSolver::supports(const Scene& s) const {
   Capability c;
+  if (s.has_tapered_pieces()) {
+    c.reason = "dtfm does not yet model tapered pieces (a section varying along [[segments]]): its prisms are "
+               "uniform; rfem integrates the varying section";
+    return c;
+  }
   c.modes = c.statics = c.frf = true;
   if (s.rotor) {
     c.reason = detail::rotor_refusal(s);

@@ -379,6 +379,11 @@ double rotor_seconds(const Scene& s, double k, const std::function<double(double
 Capability ExactSolver::supports(const Scene& s) const {
   Capability c;
   if (s.is_beam()) {
+    if (s.has_tapered_pieces()) {
+      c.reason = "exact does not yet solve tapered pieces (a section varying along [[segments]]): its line "
+                 "solutions are those of uniform pieces; rfem integrates the varying section";
+      return c;
+    }
     c.modes = c.statics = c.frf = true;
     if (s.rotor) {
       c.reason = detail::rotor_refusal(s);

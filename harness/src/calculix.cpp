@@ -282,7 +282,8 @@ std::string calculix_unsupported_reason(const Scene& s) {
   if (s.is_beam()) {
     if (s.cross_section.shape != SectionShape::Rectangle)
       return "the 3D reference meshes rectangular sections only (got a " + to_string(s.cross_section.shape) + ")";
-    if (s.is_stepped()) return "the 3D reference meshes uniform beams only (no [[segments]])";
+    if (s.is_stepped() || s.has_tapered_pieces())
+      return "the 3D reference meshes uniform beams only (no [[segments]])";
     if (!s.point_supports.empty() || !s.masses.empty())
       return "the 3D reference has no supports between the ends or point masses";
     for (const Support* e : {&s.x0, &s.xL})

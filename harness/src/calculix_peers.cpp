@@ -146,7 +146,8 @@ std::string calculix_peer_unsupported_reason(const Scene& s) {
     if (s.cross_section.shape != SectionShape::Rectangle)
       return "the B32R beam reference is written with a rectangular section only (got a " +
              to_string(s.cross_section.shape) + ")";
-    if (s.is_stepped()) return "the B32R beam reference is written for uniform beams only (no [[segments]])";
+    if (s.is_stepped() || s.has_tapered_pieces())
+      return "the B32R beam reference is written for uniform beams only (no [[segments]])";
     if (!s.point_supports.empty() || !s.masses.empty())
       return "the B32R beam reference is written without supports between the ends or point masses";
     for (const Support* e : {&s.x0, &s.xL})

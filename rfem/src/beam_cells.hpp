@@ -1,7 +1,8 @@
 #pragma once
 // Private to the beam builder: a beam's properties integrated over the parts of it that one rigid
 // element (its mass, rotary inertia) or one spring-damping element (its compliances, in series)
-// stands for. Exact for a stepped beam ([[segments]]) wherever its steps fall.
+// stands for. Exact for a stepped beam ([[segments]]) wherever its steps fall; over a tapered
+// piece, integrated to rounding by Gauss-Legendre quadrature (beam_cells.cpp).
 
 #include <vector>
 

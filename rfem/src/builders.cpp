@@ -109,12 +109,11 @@ void add_beam_singularities(Model& m, const BeamSetup& b) {
   const std::vector<Segment>& pieces = b.pieces;
   const bool eb = b.eb;
   // Slope jumps of the second-order fields under their own point actions (PointSingularity), with
-  // the stiffness of the piece the action is on.
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const Segment& p = pieces[i];
-    const Section ps = p.properties();
+  // the stiffness of the piece the action is on: a tapered piece's at the middle of each mesh
+  // segment's share of it (the jump is O(d); the stiffness off by O(d) there, so O(d^2) in all).
+  auto kinks = [&](const Segment& p, double at, double from, double to) {
+    const Section ps = p.properties_at(at);
     const Material& pm = p.material;
-    const double from = i == 0 ? -kInf : p.x_from, to = i + 1 == pieces.size() ? kInf : p.x_to;
     auto kink = [&](int dof, double stiffness) {
       if (std::find(m.active.begin(), m.active.end(), dof) == m.active.end()) return;
       m.singularities.push_back({dof, dof, PointSingularity::Kind::Kink, 0.5 / stiffness,
@@ -122,12 +121,25 @@ void add_beam_singularities(Model& m, const BeamSetup& b) {
     };
     kink(dofs::Ux, pm.E * ps.A);
     if (!eb) {
-      kink(dofs::Uz, pm.kappa * pm.G * ps.A);
-      kink(dofs::Uy, pm.kappa * pm.G * ps.A);
+      kink(dofs::Uz, p.kappa_at(at) * pm.G * ps.A);
+      kink(dofs::Uy, p.kappa_at(at) * pm.G * ps.A);
     }
     kink(dofs::Rx, pm.G * ps.J);
     kink(dofs::Ry, pm.E * ps.Iy);
     kink(dofs::Rz, pm.E * ps.Iz);
+  };
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const Segment& p = pieces[i];
+    const double from = i == 0 ? -kInf : p.x_from, to = i + 1 == pieces.size() ? kInf : p.x_to;
+    if (!p.tapered()) {
+      kinks(p, p.x_from, from, to);
+      continue;
+    }
+    for (int j = 0; j < b.n; ++j) {
+      const double lo = std::max(p.x_from, j * b.d), hi = std::min(p.x_to, (j + 1) * b.d);
+      if (!(hi > lo)) continue;
+      kinks(p, 0.5 * (lo + hi), lo == p.x_from ? from : lo, hi == p.x_to ? to : hi);
+    }
   }
 }
 

@@ -38,7 +38,7 @@ std::vector<PointAction> distributed_actions(const Model& model, const Scene& s)
     const std::vector<double> xs = pieces(model.grid.x, q.from[0], q.to[0]);
     if (s.is_beam()) {
       for (std::size_t i = 0; i + 1 < xs.size(); ++i)
-        for (const auto& [x, w] : gauss2(xs[i], xs[i + 1])) {
+        for (const auto& [x, w] : load_gauss_points(q, xs[i], xs[i + 1], 1)) {
           Vector6d a = Vector6d::Zero();
           a << q.at(q.qx, x) * w, q.at(q.qy, x) * w, q.at(q.qz, x) * w, 0, 0, 0;
           out.emplace_back(Eigen::Vector3d(x, 0, 0), a);

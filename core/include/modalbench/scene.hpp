@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -130,16 +131,41 @@ Section section_properties(const Geometry& g, const SectionSpec& spec);
 /// and of a tube with m = d / D, 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu) (1 + m^2)^2 + (20 + 12 nu) m^2).
 double cowper_kappa_tube(double nu, double m);
 
+/// How a tapered piece's dimensions vary from their start value d0 to their end value d1 over its
+/// length l (`profile`): linear, d(s) = d0 + (d1 - d0) s / l; exponential, d(s) = d0 (d1 / d0)^(s / l).
+enum class Profile { Linear, Exponential };
+std::string to_string(Profile);
+
+/// A tapered piece's section at its end x_to (`[start, end]` dimensions in [[segments]]): the
+/// rectangle's sides and the section's dimensions there, and how each varies between the ends.
+/// A dimension written as one number has the same value at both ends.
+struct SectionEnd {
+  double width = 0, height = 0;
+  SectionSpec section;
+  Profile profile = Profile::Linear;
+};
+
 /// One piece of a stepped beam (`[[segments]]`): over [x_from, x_to] (m), with its own section
 /// (`width` x `height` for a rectangle, and the section's extent otherwise, as Geometry's) and its
 /// own material (the scene's, with the keys the piece overrides). Scene::beam_pieces gives every
-/// beam as such pieces.
+/// beam as such pieces. A tapered piece (`end`) has this section at x_from and `end`'s at x_to.
 struct Segment {
   double x_from = 0, x_to = 0;
   double width = 0, height = 0;
   SectionSpec section;
   Material material;
-  Section properties() const { return section_properties({x_to - x_from, width, height}, section); }
+  std::optional<SectionEnd> end;  ///< set for a tapered piece only
+  /// A tube whose bore ratio varies with a default (Cowper's) shear coefficient: kappa_at follows it.
+  bool kappa_follows_shape = false;
+
+  bool tapered() const { return end.has_value(); }
+  /// A uniform piece's section properties (throws std::logic_error for a tapered piece: use
+  /// properties_at, or integrate over it).
+  Section properties() const;
+  /// The section properties at x (m, along the beam, clamped to [x_from, x_to]).
+  Section properties_at(double x) const;
+  /// The shear coefficient at x: the material's, or Cowper's for the local bore (kappa_follows_shape).
+  double kappa_at(double x) const;
   double length() const { return x_to - x_from; }
 };
 
@@ -174,12 +200,21 @@ struct PointMass {
 struct DistributedLoad {
   std::array<double, 2> from{}, to{};
   std::array<double, 2> qx{}, qy{}, qz{};
+  /// Beams only: a smooth factor on the linear intensities (the weight of a tapered piece: its
+  /// area at x over the area at x_from). Empty: 1.
+  std::function<double(double)> factor;
   /// A beam component's intensity at x in [from[0], to[0]].
   double at(const std::array<double, 2>& q, double x) const {
     const double t = (x - from[0]) / (to[0] - from[0]);
-    return q[0] + (q[1] - q[0]) * t;
+    return (q[0] + (q[1] - q[0]) * t) * (factor ? factor(x) : 1.0);
   }
 };
+/// Gauss-Legendre points and weights that integrate a beam load's intensity over [lo, hi], and its
+/// moment about any point: two points for a linear intensity (exact); for one with a factor, 8
+/// points on each of `parts` equal parts (exact to degree 15 on each part: the factors of tapered
+/// pieces, polynomials of degree <= 4, exactly, and their exponentials to rounding).
+std::vector<std::pair<double, double>> load_gauss_points(const DistributedLoad& q, double lo, double hi,
+                                                         int parts = 16);
 
 struct FrfRequest {
   std::array<double, 2> excite{};   ///< beam: {x, 0}; plate: {x, y}; unit Fz there
@@ -300,6 +335,8 @@ struct Scene {
   std::vector<Segment> beam_pieces() const;
   /// A stepped beam (more than one piece).
   bool is_stepped() const { return segments.size() > 1; }
+  /// Whether any piece's section varies along it (Segment::tapered).
+  bool has_tapered_pieces() const;
   /// Every point load: `loads` and, under gravity, the weight of each point mass (m g at its x).
   std::vector<PointLoad> all_point_loads() const;
   /// Every distributed load: `line_loads` (beam) or `pressures` (plate) and, under gravity, the

@@ -1,0 +1,272 @@
+// Tapered pieces ([[segments]] with a dimension as [start, end]) against references written out
+// here in extended precision (long double), independently of the code:
+//   - a clamped-clamped Euler-Bernoulli beam whose width falls as b0 e^(-g x) (Code_Aster SDLL10):
+//     A and I both go as e^(-g x), and w = e^(g x / 2) (c1 cosh Rx + c2 sinh Rx + c3 cos Sx + c4 sin Sx),
+//     R = sqrt(g^2/4 + k^2), S = sqrt(k^2 - g^2/4), k^4 = rho A0 w^2 / (E I0); clamped ends make
+//     its 4 x 4 determinant vanish;
+//   - a tapered cantilever's tip deflection under a tip load, P int_0^L (L - x)^2 / EI(x) dx (the
+//     unit-load integral of M^2 / EI), by composite Simpson in long double;
+//   - under gravity the clamp carries the piece's weight, rho g int A dx in closed form;
+//   - a staircase of n uniform pieces (each with the section at its middle) tends to the taper at
+//     second order in 1 / n.
+// rfem is held to its own error estimate and its observed order (2, as on uniform beams).
+#define BOOST_TEST_MODULE tapered
+#include <boost/test/unit_test.hpp>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "solver_tests.hpp"
+#include "solve_options.hpp"
+
+using namespace modalbench;
+using namespace modalbench::solver_tests;
+
+namespace {
+
+using ld = long double;
+constexpr ld kPiL = 3.141592653589793238462643383279502884L;
+constexpr double E = 2.0e11, rho = 7800.0;
+
+std::string beam(const std::string& theory, const std::string& pieces, const std::string& supports,
+                 const std::string& extra, int modes) {
+  return "[scene]\nname = \"tapered\"\nkind = \"beam\"\nphysics = \"bending\"\ntheory = \"" + theory +
+         "\"\n[geometry]\nlength = 0.6\n" + pieces + "\n[material]\nE = 2.0e11\nnu = 0.3\nrho = 7800.0\n[supports]\n" +
+         supports + "\n" + extra + "\n[request]\nmodes = " + std::to_string(modes) + "\n";
+}
+
+std::string piece(double length, const std::string& section, const std::string& profile = "") {
+  return "[[segments]]\nlength = " + std::to_string(length) + "\nsection = " + section + "\n" +
+         (profile.empty() ? "" : "profile = \"" + profile + "\"\n");
+}
+
+// SDLL10: L = 0.6 m, h = 0.01 m, b = 0.03 e^(-2 x) m.
+constexpr double kL = 0.6, kH = 0.01, kB0 = 0.03, kGamma = 2.0;
+const std::string kSdll10 = piece(kL, fmt::format("{{ shape = \"rectangle\", width = [0.03, {:.17g}], height = 0.01 }}",
+                                              kB0 * std::exp(-kGamma * kL)),
+                                  "exponential");
+
+/// The 4 x 4 determinant of the clamped-clamped exponential beam at k (scaled by 1 / cosh(R L)).
+ld sdll10_determinant(ld k) {
+  const ld g = kGamma, L = kL, R = std::sqrt(g * g / 4 + k * k), S = std::sqrt(k * k - g * g / 4);
+  const ld c = std::cosh(R * L), sh = std::sinh(R * L);
+  Eigen::Matrix<ld, 4, 4> m;
+  m << 1, 0, 1, 0, 0, R, 0, S, c / c, sh / c, std::cos(S * L) / c, std::sin(S * L) / c, R * sh / c, R * c / c,
+      -S * std::sin(S * L) / c, S * std::cos(S * L) / c;
+  return m.determinant();
+}
+
+/// The first `count` natural frequencies (rad/s) of SDLL10 as Euler-Bernoulli: the determinant's
+/// sign changes on a fine grid of k, then bisection in long double.
+std::vector<ld> sdll10_frequencies(int count) {
+  std::vector<ld> out;
+  const ld c = std::sqrt(static_cast<ld>(E) / (12 * static_cast<ld>(rho))) * kH;  // omega = c k^2
+  ld lo = kGamma / 2 + 1e-3L, flo = sdll10_determinant(lo);
+  for (ld hi = lo + 1e-3L; static_cast<int>(out.size()) < count && hi < 100; hi += 1e-3L) {
+    const ld fhi = sdll10_determinant(hi);
+    if ((flo < 0) != (fhi < 0)) {
+      ld a = lo, b = hi, fa = flo;
+      for (int i = 0; i < 200 && b - a > 1e-18L * b; ++i) {
+        const ld m = (a + b) / 2, fm = sdll10_determinant(m);
+        ((fa < 0) == (fm < 0) ? a : b) = m;
+        if ((fa < 0) == (fm < 0)) fa = fm;
+      }
+      out.push_back(c * a * a);
+    }
+    lo = hi;
+    flo = fhi;
+  }
+  return out;
+}
+
+Result rfem_on(const Scene& s, int n) { return registry().get("rfem").solve(s, Discretization{{n}}, Options{}); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(sections_vary_by_their_profile) {
+  const std::string rect = piece(0.4, "{ shape = \"rectangle\", width = [0.04, 0.01], height = [0.05, 0.02] }");
+  const std::string tube =
+      piece(0.2, "{ shape = \"tube\", outer_diameter = [0.1, 0.06], inner_diameter = 0.04 }", "exponential");
+  const Scene s = parse_scene(beam("euler-bernoulli", rect + tube, "x0 = \"clamped\"\nxL = \"free\"", "", 2), "t.toml");
+  BOOST_REQUIRE_EQUAL(s.segments.size(), 2u);
+  BOOST_TEST(s.has_tapered_pieces());
+  const Segment &r = s.segments[0], &t = s.segments[1];
+  BOOST_TEST(r.tapered());
+  BOOST_TEST(to_string(r.end->profile) == "linear");
+  // Linear: at the middle the sides are the means; Iy = b h^3 / 12.
+  const Section mid = r.properties_at(0.2);
+  BOOST_TEST(rel(mid.A, 0.025 * 0.035) < 1e-15);
+  BOOST_TEST(rel(mid.Iy, 0.025 * std::pow(0.035, 3) / 12) < 1e-14);
+  BOOST_TEST(rel(r.properties_at(0.4).Iz, 0.02 * std::pow(0.01, 3) / 12) < 1e-14);
+  // Exponential: the geometric mean at the middle; the bore stays; Cowper's kappa follows d / D.
+  const double D = std::sqrt(0.1 * 0.06), d = 0.04, pi = 3.14159265358979323846;
+  BOOST_TEST(rel(t.properties_at(0.5).A, pi * (D * D - d * d) / 4) < 1e-14);
+  BOOST_TEST(rel(t.properties_at(0.6).Iy, pi * (std::pow(0.06, 4) - std::pow(d, 4)) / 64) < 1e-14);
+  BOOST_TEST(t.kappa_follows_shape);
+  BOOST_TEST(rel(t.kappa_at(0.4), cowper_kappa_tube(0.3, 0.4)) < 1e-15);
+  BOOST_TEST(rel(t.kappa_at(0.6), cowper_kappa_tube(0.3, d / 0.06)) < 1e-15);
+  BOOST_TEST(s.geometry.height == 0.1);  // the largest extent
+  BOOST_CHECK_THROW(r.properties(), std::logic_error);  // a tapered piece has no one section
+}
+
+BOOST_AUTO_TEST_CASE(bad_tapers_are_named_by_key_and_reason) {
+  const std::string sup = "x0 = \"clamped\"\nxL = \"free\"";
+  auto bad = [&](const std::string& pieces, const std::string& key, const std::string& reason) {
+    expect_input_error(beam("euler-bernoulli", pieces, sup, "", 2), key, reason);
+  };
+  bad(piece(0.6, "{ shape = \"rectangle\", width = [0.03, 0.0], height = 0.01 }"), "segments[0].section.width[1]",
+      "reach zero or below inside the piece");
+  bad(piece(0.6, "{ shape = \"rectangle\", width = [0.03, -0.01], height = 0.01 }", "exponential"),
+      "segments[0].section.width[1]", "must be > 0");
+  bad(piece(0.6, "{ shape = \"tube\", outer_diameter = [0.06, 0.04], inner_diameter = [0.02, 0.05] }"),
+      "segments[0].section.inner_diameter", "reach the outside inside the piece");
+  bad(piece(0.6, "{ shape = \"circle\", diameter = 0.05 }", "linear"), "segments[0].profile",
+      "no dimension of the section varies");
+  bad(piece(0.6, "{ shape = \"circle\", diameter = [0.05, 0.05] }", "exponential"), "segments[0].profile",
+      "no dimension of the section varies");
+  bad(piece(0.6, "{ shape = \"circle\", diameter = [0.05, 0.03] }", "cubic"), "segments[0].profile",
+      "unknown profile");
+  bad(piece(0.6, "{ shape = \"circle\", diameter = [0.05, 0.03, 0.01] }"), "segments[0].section.diameter",
+      "[start, end]");
+  expect_input_error(
+      "[scene]\nname = \"u\"\nkind = \"beam\"\nphysics = \"bending\"\ntheory = \"euler-bernoulli\"\n[geometry]\n"
+      "length = 1.0\nsection = { shape = \"circle\", diameter = [0.05, 0.03] }\n[material]\nE = 2.0e11\nnu = 0.3\n"
+      "rho = 7800.0\n[supports]\nx0 = \"clamped\"\nxL = \"free\"\n[request]\nmodes = 2\n",
+      "geometry.section.diameter", "in [[segments]]");
+}
+
+BOOST_AUTO_TEST_CASE(exponential_clamped_beam_against_its_frequency_equation) {
+  const int k = 4;
+  const std::vector<ld> ref = sdll10_frequencies(k);
+  BOOST_REQUIRE_EQUAL(ref.size(), static_cast<std::size_t>(k));
+  // SDLL10's corrected values (its published 143.303 Hz ... solve a frequency equation with R and S
+  // exchanged; docs/sources.md): 145.877, 400.295, 783.232, 1293.572 Hz.
+  BOOST_TEST(std::abs(static_cast<double>(ref[0]) / (2 * 3.14159265358979323846) - 145.877) < 1e-3);
+  const Scene s = parse_scene(beam("euler-bernoulli", kSdll10, "x0 = \"clamped\"\nxL = \"clamped\"", "", k) +
+                                  "tolerance = 1e-6\n",
+                              "sdll10.toml");
+  Scene coarse = s;  // the ladder's coarse meshes judged against a loose tolerance
+  coarse.request.tolerance = 0.5;
+  std::vector<std::vector<double>> err;
+  for (int n : {32, 64, 128, 256}) {
+    const Result r = rfem_on(coarse, n);
+    BOOST_REQUIRE(r.summary.status == Status::Success);
+    err.emplace_back();
+    for (int i = 0; i < k; ++i) err.back().push_back(rel(r.frequencies_rad_s[i], static_cast<double>(ref[i])));
+  }
+  // Second order: each halving divides the error by 4 (the next term, h^4, is 1 % of it by 64).
+  for (int i = 0; i < k; ++i) {
+    const double order = std::log2(err[2][i] / err[3][i]);
+    BOOST_TEST_INFO("mode " << i + 1 << ": errors " << err[0][i] << ", " << err[1][i] << ", " << err[2][i] << ", "
+                            << err[3][i] << "; observed order " << order);
+    BOOST_TEST(std::abs(order - 2.0) < 0.1);
+  }
+  // The default solve's reported (extrapolated) values within their estimate of the closed form.
+  const Result d = registry().get("rfem").solve_default(s, Options{});
+  BOOST_REQUIRE(d.summary.status == Status::Success);
+  for (int i = 0; i < k; ++i)
+    BOOST_TEST(rel(d.frequencies_rad_s[i], static_cast<double>(ref[i])) <= d.summary.error_estimate.frequencies);
+}
+
+BOOST_AUTO_TEST_CASE(tapered_cantilever_tip_deflection_and_weight) {
+  // A cone 0.6 m long, 50 mm across at the clamp and 30 mm at the tip, tip load P.
+  const ld D0 = 0.05L, D1 = 0.03L, L = kL, P = 1000;
+  auto I = [&](ld x) { const ld D = D0 + (D1 - D0) * x / L; return kPiL * D * D * D * D / 64; };
+  const int n = 20000;  // Simpson: error ~ (L / n)^4 f'''' / 180, far below double's rounding
+  ld sum = 0;
+  for (int i = 0; i <= n; ++i) {
+    const ld x = L * i / n, f = (L - x) * (L - x) / (E * I(x));
+    sum += f * (i == 0 || i == n ? 1 : i % 2 ? 4 : 2);
+  }
+  const double tip = static_cast<double>(-P * sum * L / (3 * n));
+  const std::string cone = piece(kL, "{ shape = \"circle\", diameter = [0.05, 0.03] }");
+  const Scene s = parse_scene(beam("euler-bernoulli", cone, "x0 = \"clamped\"\nxL = \"free\"",
+                                   "[[loads]]\nx = 0.6\nFz = -1000.0\n[gravity]\ng = [0.0, 0.0, -9.81]", 2) +
+                                  "probes = [0.6]\ntolerance = 0.5\n",
+                              "cone.toml");
+  // The weight: rho g pi / 4 L (D0^2 + D0 D1 + D1^2) / 3.
+  const double weight = static_cast<double>(rho * 9.81L * kPiL / 4 * L * (D0 * D0 + D0 * D1 + D1 * D1) / 3);
+  // Its own tip deflection (unit load at the tip against the weight's moment): int m(x) M_w(x) / EI.
+  ld own = 0;
+  auto A = [&](ld x) { const ld D = D0 + (D1 - D0) * x / L; return kPiL * D * D / 4; };
+  auto Mw = [&](ld x) {  // moment at x of the weight beyond it, int_x^L rho g A(t) (t - x) dt, by Simpson
+    const int m = 2000;
+    ld acc = 0;
+    for (int i = 0; i <= m; ++i) {
+      const ld t = x + (L - x) * i / m;
+      acc += rho * 9.81L * A(t) * (t - x) * (i == 0 || i == m ? 1 : i % 2 ? 4 : 2);
+    }
+    return acc * (L - x) / (3 * m);
+  };
+  for (int i = 0; i <= 2000; ++i) {
+    const ld x = L * i / 2000;
+    own += (L - x) * Mw(x) / (E * I(x)) * (i == 0 || i == 2000 ? 1 : i % 2 ? 4 : 2);
+  }
+  const double total = tip - static_cast<double>(own * L / (3 * 2000));
+  std::vector<double> err;
+  for (int m : {40, 80, 160}) {
+    const Result r = rfem_on(s, m);
+    BOOST_TEST_CONTEXT("rfem " << m << ": " << r.summary.message) {
+      BOOST_REQUIRE(r.summary.status == Status::Success);
+      BOOST_REQUIRE_EQUAL(r.deflections.size(), 1u);
+      err.push_back(rel(r.deflections[0].w, total));
+      // The clamp carries the load and the weight (to the balance's rounding).
+      BOOST_REQUIRE_EQUAL(r.reactions.size(), 1u);
+      BOOST_TEST(rel(r.reactions[0].force[2], 1000.0 + weight) < 1e-10);
+    }
+  }
+  BOOST_TEST_INFO("tip deflection errors " << err[0] << ", " << err[1] << ", " << err[2]);
+  BOOST_TEST(std::abs(std::log2(err[1] / err[2]) - 2.0) < 0.15);
+}
+
+BOOST_AUTO_TEST_CASE(exponential_weight_is_carried_whole) {
+  // The SDLL10 beam as a cantilever under its own weight: rho g h b0 (1 - e^(-g L)) / g.
+  const Scene s = parse_scene(
+      beam("euler-bernoulli", kSdll10, "x0 = \"clamped\"\nxL = \"free\"", "[gravity]\ng = [0.0, 0.0, -9.81]", 2) +
+          "probes = [0.6]\ntolerance = 0.5\n",
+      "sdll10_weight.toml");
+  const double weight = rho * 9.81 * kH * kB0 * (1 - std::exp(-kGamma * kL)) / kGamma;
+  const Result r = rfem_on(s, 64);
+  BOOST_REQUIRE(r.summary.status == Status::Success);
+  BOOST_REQUIRE_EQUAL(r.reactions.size(), 1u);
+  BOOST_TEST(rel(r.reactions[0].force[2], weight) < 1e-10);
+}
+
+BOOST_AUTO_TEST_CASE(a_staircase_tends_to_the_taper_at_second_order) {
+  // The cone clamped-free, tapered and as n uniform pieces with the diameter at each middle; both
+  // on rfem's mesh of 240 segments (the steps on its nodes), so that only the staircase differs.
+  const Scene taper = parse_scene(beam("euler-bernoulli", piece(kL, "{ shape = \"circle\", diameter = [0.05, 0.03] }"),
+                                       "x0 = \"clamped\"\nxL = \"free\"", "", 3) +
+                                      "tolerance = 0.5\n",
+                                  "cone.toml");
+  const Result ref = rfem_on(taper, 240);
+  BOOST_REQUIRE(ref.summary.status == Status::Success);
+  std::vector<double> diff;
+  for (int n : {4, 8, 16}) {
+    std::string pieces;
+    for (int i = 0; i < n; ++i)
+      pieces += piece(kL / n, "{ shape = \"circle\", diameter = " + std::to_string(0.05 - 0.02 * (i + 0.5) / n) + " }");
+    const Scene stairs = parse_scene(
+        beam("euler-bernoulli", pieces, "x0 = \"clamped\"\nxL = \"free\"", "", 3) + "tolerance = 0.5\n", "s.toml");
+    const Result r = rfem_on(stairs, 240);
+    BOOST_REQUIRE(r.summary.status == Status::Success);
+    diff.push_back(rel(r.frequencies_rad_s[0], ref.frequencies_rad_s[0]));
+  }
+  BOOST_TEST_INFO("staircase differences " << diff[0] << ", " << diff[1] << ", " << diff[2]);
+  BOOST_TEST(std::abs(std::log2(diff[0] / diff[1]) - 2.0) < 0.15);
+  BOOST_TEST(std::abs(std::log2(diff[1] / diff[2]) - 2.0) < 0.15);
+}
+
+BOOST_AUTO_TEST_CASE(back_ends_without_tapers_say_so) {
+  const Scene s = parse_scene(beam("euler-bernoulli", kSdll10, "x0 = \"clamped\"\nxL = \"clamped\"", "", 2), "t.toml");
+  for (const std::string name : {"exact", "dtfm", "difference_eq"}) {
+    const Capability c = registry().get(name).supports(s);
+    BOOST_TEST_INFO(name << ": " << c.reason);
+    BOOST_TEST(!c.any());
+    BOOST_TEST(c.reason.find("tapered") != std::string::npos);
+  }
+  BOOST_TEST(registry().get("rfem").supports(s).modes);
+}
