@@ -114,20 +114,28 @@ Section Segment::properties() const {
   return section_properties({x_to - x_from, width, height}, section);
 }
 
-Section Segment::properties_at(double x) const {
-  if (!end) return properties();
+Section Segment::properties_at(double x) const { return end ? uniform_at(x).properties() : properties(); }
+
+Segment Segment::uniform_at(double x) const {
+  if (!end) return *this;
   const double t = std::clamp((x - x_from) / (x_to - x_from), 0.0, 1.0);
   const Profile p = end->profile;
   const SectionSpec& a = section;
   const SectionSpec& b = end->section;
-  SectionSpec at = a;
+  Segment out = *this;
+  out.end.reset();
+  out.kappa_follows_shape = false;
+  out.material.kappa = kappa_at(x);
+  out.width = vary(p, width, end->width, t);
+  out.height = vary(p, height, end->height, t);
+  SectionSpec& at = out.section;
   at.diameter = vary(p, a.diameter, b.diameter, t);
   at.inner_diameter = vary(p, a.inner_diameter, b.inner_diameter, t);
   at.A = vary(p, a.A, b.A, t);
   at.Iy = vary(p, a.Iy, b.Iy, t);
   at.Iz = vary(p, a.Iz, b.Iz, t);
   at.J = vary(p, a.J, b.J, t);
-  return section_properties({x_to - x_from, vary(p, width, end->width, t), vary(p, height, end->height, t)}, at);
+  return out;
 }
 
 double Segment::kappa_at(double x) const {

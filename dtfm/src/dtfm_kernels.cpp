@@ -1,6 +1,7 @@
 // dtfm's kernels (kernels.hpp in core): the modes, shapes, statics, FRF and Campbell diagram of one
 // prism model solved by its segment dynamic stiffness (LineAnalysis).
 #include "dtfm_kernels.hpp"
+#include "staircase.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -174,8 +175,13 @@ void describe_model(const Scene& scene, const Options& options, const Setup& st,
 
 class DtfmKernels final : public Kernels {
  public:
-  DtfmKernels(const Scene& scene, const Setup& setup, PrismModel model)
-      : scene_(scene), setup_(setup), model_(std::move(model)), la_(model_, setup_.controls) {}
+  /// `owned`: the scene the kernels solve where it is not the caller's (a tapered beam's staircase).
+  DtfmKernels(const Scene& scene, const Setup& setup, PrismModel model, std::shared_ptr<const Scene> owned = {})
+      : owned_(std::move(owned)),
+        scene_(owned_ ? *owned_ : scene),
+        setup_(setup),
+        model_(std::move(model)),
+        la_(model_, setup_.controls) {}
   const PrismModel& model() const { return model_; }
 
   void modes(Result& r) override {
@@ -263,6 +269,7 @@ class DtfmKernels final : public Kernels {
   }
 
  private:
+  const std::shared_ptr<const Scene> owned_;
   const Scene& scene_;
   const Setup setup_;
   const PrismModel model_;
@@ -275,6 +282,18 @@ class DtfmKernels final : public Kernels {
 std::unique_ptr<Kernels> make_kernels(const Scene& scene, const Discretization& mesh, const Options& options,
                                       const ModelOptions& base, Result& r) {
   const Setup st = setup_of(scene, options.resolved, base);
+  if (scene.has_tapered_pieces()) {
+    // Tapered pieces as staircases of uniform prisms, with the discretization error that brings.
+    const int steps = detail::staircase_steps(mesh);
+    auto stairs = std::make_shared<const Scene>(detail::staircase(scene, steps));
+    auto kernels = std::make_unique<DtfmKernels>(scene, st, build_model(*stairs, Discretization{{1, 1}}, st.mo), stairs);
+    describe_model(*stairs, options, st, kernels->model(), r);
+    r.summary.model = fmt::format("one prism per section, each tapered piece as {} uniform steps (the section at each "
+                                  "step's middle), tending to the tapered {} beam at second order",
+                                  steps, to_string(scene.theory));
+    r.summary.method += fmt::format("; tapered pieces as staircases of {} uniform prisms each", steps);
+    return kernels;
+  }
   auto kernels = std::make_unique<DtfmKernels>(scene, st, build_model(scene, mesh, st.mo));
   const PrismModel& model = kernels->model();
   describe_model(scene, options, st, model, r);

@@ -164,6 +164,8 @@ struct Segment {
   Section properties() const;
   /// The section properties at x (m, along the beam, clamped to [x_from, x_to]).
   Section properties_at(double x) const;
+  /// The uniform piece over [x_from, x_to] with this piece's section (and shear coefficient) at x.
+  Segment uniform_at(double x) const;
   /// The shear coefficient at x: the material's, or Cowper's for the local bore (kappa_follows_shape).
   double kappa_at(double x) const;
   double length() const { return x_to - x_from; }
