@@ -37,13 +37,15 @@ ResourceEstimate DtfmSolver::estimate(const Scene& scene, const Discretization& 
                        : scene.physics == Physics::Lateral ? 4
                        : scene.physics == Physics::Planar  ? 3
                                                            : 2;
-    fields = per * mesh.counts[0] * (mesh.counts.size() > 1 ? mesh.counts[1] : mesh.counts[0]);
+    // A tapered beam's mesh counts steps along it; each is one prism.
+    fields = scene.has_tapered_pieces() ? per
+                                        : per * mesh.counts[0] * (mesh.counts.size() > 1 ? mesh.counts[1] : mesh.counts[0]);
   }
   // A tapered beam's staircase: each step a node of the line, its cost about linear in them (the
   // conical shaft's 31 spins of 4 roots: 6.7 s on 51 pieces, where a uniform shaft takes 86 ms).
   double steps = 1;
-  if (scene.has_tapered_pieces() && mesh.counts.size() == 3)
-    for (const Segment& p : scene.segments) steps += p.tapered() ? mesh.counts[2] : 1;
+  if (scene.has_tapered_pieces() && mesh.counts.size() == 1)
+    for (const Segment& p : scene.segments) steps += p.tapered() ? mesh.counts[0] : 1;
   const double line_factor = steps > 1 ? 1.5 * steps : 1.0;
   if (fields <= 0) return e;
   const double scale = std::pow(fields / 123.0, 3.0);  // 40 strips: 123 fields

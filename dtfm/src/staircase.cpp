@@ -31,18 +31,18 @@ Scene staircase(const Scene& scene, int steps) {
 }
 
 int staircase_steps(const Discretization& mesh) {
-  if (mesh.counts.size() != 3 || mesh.counts[0] != 1 || mesh.counts[1] != 1)
+  if (mesh.counts.size() != 1)
     throw InputError("", "--mesh",
-                     fmt::format("a tapered beam's dtfm mesh is 1x1xN: one prism per section and N uniform steps per "
-                                 "tapered piece (got '{}')",
+                     fmt::format("a tapered beam's dtfm mesh is N, the uniform steps per tapered piece (each one "
+                                 "prism: its section is not cut; got '{}')",
                                  mesh.spec()));
-  const int n = mesh.counts[2];
+  const int n = mesh.counts[0];
   if (n < kMinSteps || n > kMaxSteps)
     throw InputError("", "--mesh",
                      fmt::format("the steps per tapered piece must lie in [{}, {}] (got {})", kMinSteps, kMaxSteps, n));
   return n;
 }
 
-Discretization staircase_mesh(int steps) { return Discretization{{1, 1, steps}}; }
+Discretization staircase_mesh(int steps) { return Discretization{{steps}}; }
 
 }  // namespace modalbench::dtfm::detail

@@ -14,11 +14,12 @@ namespace modalbench::dtfm::detail {
 /// The scene with each tapered piece cut into `steps` uniform pieces (the others as they are).
 Scene staircase(const Scene& scene, int steps);
 
-/// The steps per tapered piece of a tapered beam's mesh, 1x1xN (one prism per section: each step's
-/// section is one prism, as on stepped beams); throws InputError naming --mesh otherwise.
+/// The steps per tapered piece of a tapered beam's mesh, N (each step's section is one prism, as on
+/// stepped beams: the mesh's one count is its length, h = 1 / N); throws InputError naming --mesh
+/// otherwise.
 int staircase_steps(const Discretization& mesh);
 
-/// A tapered beam's mesh of N steps per tapered piece: 1x1xN.
+/// A tapered beam's mesh of N steps per tapered piece: N.
 Discretization staircase_mesh(int steps);
 
 /// The least and most steps per tapered piece dtfm takes (beyond 512 its second-discretization
