@@ -309,3 +309,30 @@ BOOST_AUTO_TEST_CASE(dtfm_staircase_tends_to_the_exponential_beam_at_second_orde
   BOOST_TEST((bad.summary.status == Status::InvalidInput));
   BOOST_TEST(bad.summary.message.find("the uniform steps per tapered piece") != std::string::npos);
 }
+
+BOOST_AUTO_TEST_CASE(a_conical_shaft_whirls_alike_on_rfem_and_dtfm) {
+  // The built-in conical shaft with a disc: rfem's integrated cells and dtfm's staircase are two
+  // models of the tapered Timoshenko shaft; their Campbell diagrams and critical speeds agree within
+  // the sum of their own estimates.
+  const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/conical_shaft_disc.toml");
+  BOOST_REQUIRE(s.has_tapered_pieces());
+  const Result rf = registry().get("rfem").solve_default(s, Options{});
+  const Result dt = registry().get("dtfm").solve_default(s, Options{});
+  BOOST_REQUIRE_MESSAGE(rf.ok(), rf.summary.message);
+  BOOST_REQUIRE_MESSAGE(dt.ok(), dt.summary.message);
+  const double bound = rf.summary.error_estimate.campbell + dt.summary.error_estimate.campbell;
+  BOOST_TEST(bound < 1e-3);
+  BOOST_REQUIRE_EQUAL(rf.campbell.points.size(), dt.campbell.points.size());
+  for (std::size_t p = 0; p < rf.campbell.points.size(); ++p) {
+    const auto &a = rf.campbell.points[p], &b = dt.campbell.points[p];
+    BOOST_REQUIRE_EQUAL(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
+    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
+      BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i << ": rfem " << a.frequencies_rad_s[i] << ", dtfm "
+                              << b.frequencies_rad_s[i]);
+      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) / (std::abs(a.frequencies_rad_s[i]) + a.spin_rad_s) <=
+                 bound);
+    }
+  }
+  BOOST_REQUIRE(!rf.campbell.forward_criticals.empty());
+  BOOST_TEST(rel(dt.campbell.forward_criticals[0], rf.campbell.forward_criticals[0]) <= bound);
+}
