@@ -149,12 +149,14 @@ MeshFamily tapered_family(const Scene& scene) {
   f.coarser = [](const Discretization& m) -> std::optional<CoarserMesh> {
     const int steps = detail::staircase_steps(m);
     if (steps < 2 * detail::kMinSteps) return std::nullopt;
-    return CoarserMesh{detail::staircase_mesh(steps / 2), static_cast<double>(steps) / (steps / 2), 2.0,
-                       std::numeric_limits<double>::quiet_NaN()};
+    // The midpoint staircase's error expands in even powers of 1 / N (test_tapered measures the
+    // extrapolated values' order 4 on SDLL10): its values are extrapolated.
+    return CoarserMesh{detail::staircase_mesh(steps / 2), static_cast<double>(steps) / (steps / 2), 2.0, 4.0};
   };
   f.finer = [](const Discretization& m, double factor) -> std::optional<Discretization> {
-    const long steps = std::lround(std::ceil(detail::staircase_steps(m) * factor));
-    if (steps > detail::kMaxSteps) return std::nullopt;
+    const int now = detail::staircase_steps(m);
+    if (now >= detail::kMaxSteps) return std::nullopt;
+    const long steps = std::min<long>(std::lround(std::ceil(now * factor)), detail::kMaxSteps);
     return detail::staircase_mesh(static_cast<int>(steps + steps % 2));  // even: its halving is exact
   };
   return f;
