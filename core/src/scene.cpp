@@ -1,5 +1,7 @@
 #include "modalbench/scene.hpp"
 
+#include "modalbench/gauss_legendre.hpp"
+
 #include <Eigen/Dense>
 
 #include <fmt/format.h>
@@ -251,11 +253,7 @@ std::vector<std::pair<double, double>> load_gauss_points(const DistributedLoad& 
     const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo), off = half / std::sqrt(3.0);
     return {{mid - off, half}, {mid + off, half}};
   }
-  // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun 25.4.30).
-  static constexpr std::array<double, 4> node = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                                 0.9602898564975363};
-  static constexpr std::array<double, 4> weight = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                                   0.1012285362903763};
+  using gauss_legendre8::node, gauss_legendre8::weight;
   for (int k = 0; k < parts; ++k) {
     const double a = lo + (hi - lo) * k / parts, b = lo + (hi - lo) * (k + 1) / parts;
     const double mid = 0.5 * (a + b), half = 0.5 * (b - a);

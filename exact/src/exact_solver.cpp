@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <stdexcept>
 #include <utility>
 
@@ -355,7 +356,7 @@ double modes_below(const Scene& s, double spin) {
   double mass = s.material.rho * sec.A * s.geometry.length;
   for (const PointMass& m : s.masses) mass += m.mass;
   const double EI = s.material.E * std::max(std::min(sec.Iy, sec.Iz), 1e-300), L = s.geometry.length;
-  const double omega1 = M_PI * M_PI / (L * L) * std::sqrt(EI * L / mass);
+  const double omega1 = std::numbers::pi * std::numbers::pi / (L * L) * std::sqrt(EI * L / mass);
   return omega1 > 0 ? std::floor(std::sqrt(std::min(spin / omega1, 1e18))) : 0.0;
 }
 

@@ -4,7 +4,8 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
+
+#include "modalbench/gauss_legendre.hpp"
 
 namespace modalbench::rfem::detail {
 
@@ -35,10 +36,7 @@ Integrands integrands(const Segment& p, double c, double u) {
 
 /// 8-point Gauss-Legendre on [c + ua, c + ub], in u = x - c.
 Integrands gauss8(const Segment& p, double c, double ua, double ub) {
-  static constexpr std::array<double, 4> node = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                                 0.9602898564975363};
-  static constexpr std::array<double, 4> weight = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                                   0.1012285362903763};
+  using gauss_legendre8::node, gauss_legendre8::weight;
   const double mid = 0.5 * (ua + ub), half = 0.5 * (ub - ua);
   Integrands sum = Integrands::Zero();
   for (std::size_t i = 0; i < node.size(); ++i)

@@ -21,7 +21,7 @@ std::string supports_sharing_an_element(const Scene& s, int n) {
   if (s.x0.translational > 0) held.push_back({"x0", 0.0, 0});
   for (std::size_t i = 0; i < s.point_supports.size(); ++i) {
     const PointSupport& p = s.point_supports[i];
-    // The element the builder attaches it to (builders.cpp: the nearest centre).
+    // The element the builder attaches it to (beam_builder.cpp: the nearest centre).
     if (p.support.translational > 0)
       held.push_back({fmt::format("points[{}]", i), p.x, std::clamp(static_cast<int>(std::lround(p.x / d)), 0, n)});
   }

@@ -332,7 +332,9 @@ BOOST_AUTO_TEST_CASE(what_fuzzing_found_is_refused_up_front) {
   const Result clustered = rfem.solve(strip, testing::default_mesh(rfem, strip), o);
   BOOST_TEST(to_string(clustered.summary.status) == "resource-limit", clustered.summary.message);
   BOOST_TEST(clustered.summary.message.find("in a cluster of about") != std::string::npos, clustered.summary.message);
-  BOOST_TEST(clustered.summary.total_time_s < 5.0);
+  // Refused before the run (a structural check, not a timing): nothing was solved.
+  BOOST_TEST(clustered.summary.message.find("refused before starting") != std::string::npos, clustered.summary.message);
+  BOOST_TEST(clustered.frequencies_rad_s.empty());
   Scene soft = scene_file("rotor_asymmetric_shaft.toml");
   soft.material.E = 0.5;
   soft.material.G = soft.material.E / (2 * (1 + soft.material.nu));
