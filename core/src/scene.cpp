@@ -148,6 +148,52 @@ double Segment::kappa_at(double x) const {
   return cowper_kappa_tube(material.nu, d / D);
 }
 
+Segment::Bounds Segment::bounds_on(double x0, double x1) const {
+  Bounds out;
+  if (!end) {
+    out.weakest = out.heaviest = properties();
+    out.kappa_lo = material.kappa;
+    return out;
+  }
+  const Segment a = uniform_at(x0), b = uniform_at(x1);
+  Segment lo = a, hi = a;
+  const auto span = [](double& l, double& h, double u, double v) {
+    l = std::min(u, v);
+    h = std::max(u, v);
+  };
+  span(lo.width, hi.width, a.width, b.width);
+  span(lo.height, hi.height, a.height, b.height);
+  span(lo.section.diameter, hi.section.diameter, a.section.diameter, b.section.diameter);
+  span(hi.section.inner_diameter, lo.section.inner_diameter, a.section.inner_diameter, b.section.inner_diameter);
+  span(lo.section.A, hi.section.A, a.section.A, b.section.A);
+  span(lo.section.Iy, hi.section.Iy, a.section.Iy, b.section.Iy);
+  span(lo.section.Iz, hi.section.Iz, a.section.Iz, b.section.Iz);
+  span(lo.section.J, hi.section.J, a.section.J, b.section.J);
+  out.heaviest = hi.properties();
+  out.kappa_lo = std::min(a.material.kappa, b.material.kappa);
+  if (section.shape == SectionShape::Tube && !(lo.section.inner_diameter < lo.section.diameter)) {
+    out.weakest_exists = false;
+    return out;
+  }
+  out.weakest = lo.properties();
+  if (kappa_follows_shape) out.kappa_lo = cowper_kappa_tube(material.nu, lo.section.inner_diameter / lo.section.diameter);
+  return out;
+}
+
+double Segment::mass() const {
+  if (!end) return material.rho * properties().A * length();
+  constexpr int kParts = 16;
+  const double h = length() / kParts;
+  double sum = 0;
+  for (int k = 0; k < kParts; ++k) {
+    const double mid = x_from + (k + 0.5) * h;
+    for (std::size_t g = 0; g < gauss_legendre8::node.size(); ++g)
+      for (const double sign : {-1.0, 1.0})
+        sum += gauss_legendre8::weight[g] * 0.5 * h * properties_at(mid + sign * 0.5 * h * gauss_legendre8::node[g]).A;
+  }
+  return material.rho * sum;
+}
+
 bool Scene::has_tapered_pieces() const {
   return std::any_of(segments.begin(), segments.end(), [](const Segment& p) { return p.tapered(); });
 }

@@ -96,7 +96,7 @@ ModeShapes mode_shapes(const Scene& scene, LineAnalysis& la, const ModeList& ml)
   ms.total_mass = scene.material.rho * g.length * g.width * g.height;
   if (beam) {
     ms.total_mass = 0;
-    for (const Segment& p : scene.beam_pieces()) ms.total_mass += p.material.rho * p.properties().A * p.length();
+    for (const Segment& p : scene.beam_pieces()) ms.total_mass += p.mass();
     for (const PointMass& pm : scene.masses) ms.total_mass += pm.mass;
   }
   ms.note = std::string("dtfm: null vector of each mode's symmetry-class dynamic stiffness K(omega^2) (rigid modes: "

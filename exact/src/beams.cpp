@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "line_models.hpp"
+#include "modalbench/gauss_legendre.hpp"
 
 namespace modalbench::exact {
 
@@ -59,8 +60,11 @@ void add_load_nodes(LineSystem& sys, double L, const DistributedLineLoads& dist,
   for (double x : probes) sys.nodes_at.push_back(x / L);
 }
 
-/// The distributed loads as Gauss-point loads, 4 per segment they cover (exact: see beams.hpp);
-/// `unit(q)` is the nodal load vector of a point force q (the line's dimensionless units).
+/// The distributed loads as Gauss-point loads (`unit(q)`: the nodal load vector of a point force q,
+/// the line's dimensionless units): 4 per segment of a uniform piece, exact (beams.hpp); 16 per
+/// segment of a tapered piece or under a load with a factor (8-point Gauss-Legendre on each half:
+/// the fixed-end reactions there are smooth, not polynomial, and each tapered gap has at least 8
+/// segments: the rule's error falls as (segment / distance to the profile's singularity)^16).
 void add_distributed(const LineSystem& sys, const AssembledLine& asmb, double L, const DistributedLineLoads& dist,
                      const std::function<Eigen::VectorXd(double)>& unit, std::vector<LinePoint>& points,
                      Eigen::VectorXd& f) {
@@ -70,16 +74,26 @@ void add_distributed(const LineSystem& sys, const AssembledLine& asmb, double L,
                                                    0.3478548451374538};
   for (const DistributedLineLoad& q : dist) {
     const double a = q.x_from / L, b = q.x_to / L;
+    // A Gauss point at xi of the rule on a part `width` long (dimensionless) with weight `w`.
+    const auto add = [&](double xi, double width, double w) {
+      const double t = (xi - a) / (b - a);
+      double force = (q.q_from + (q.q_to - q.q_from) * t) * 0.5 * width * L * w;  // N
+      if (q.factor) force *= q.factor(xi * L);
+      points.push_back({xi, unit(force)});
+      add_point_load(sys, asmb, 0.0, points.back(), f);
+    };
     for (std::size_t i = 0; i + 1 < asmb.xi.size(); ++i) {
       const double lo = std::max(a, asmb.xi[i]), hi = std::min(b, asmb.xi[i + 1]);
       if (!(hi > lo)) continue;
-      for (std::size_t g = 0; g < node.size(); ++g) {
-        const double xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * node[g];
-        const double t = (xi - a) / (b - a);
-        const double force = (q.q_from + (q.q_to - q.q_from) * t) * 0.5 * (hi - lo) * L * weight[g];  // N
-        points.push_back({xi, unit(force)});
-        add_point_load(sys, asmb, 0.0, points.back(), f);
+      if (!q.factor && !sys.variation_at(0.5 * (asmb.xi[i] + asmb.xi[i + 1]))) {
+        for (std::size_t g = 0; g < node.size(); ++g)
+          add(0.5 * (lo + hi) + 0.5 * (hi - lo) * node[g], hi - lo, weight[g]);
+        continue;
       }
+      for (const auto& [l, h] : {std::pair{lo, 0.5 * (lo + hi)}, std::pair{0.5 * (lo + hi), hi}})
+        for (std::size_t g = 0; g < gauss_legendre8::node.size(); ++g)
+          for (const double sign : {-1.0, 1.0})
+            add(0.5 * (l + h) + sign * 0.5 * (h - l) * gauss_legendre8::node[g], h - l, gauss_legendre8::weight[g]);
     }
   }
 }
@@ -187,39 +201,68 @@ double beam_receptance(const BeamBending& beam, EndSprings left, EndSprings righ
 
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// A piece's bending properties from its section and shear coefficient (`I`: Iy or Iz).
+BendingProps bending_props(const Material& m, const Section& sec, double kappa, double Section::*I, bool eb) {
+  return {m.E * (sec.*I), eb ? kInf : kappa * m.G * sec.A, m.rho * sec.A, eb ? 0.0 : m.rho * (sec.*I)};
+}
+
+/// A tapered piece's bending variation: its properties at x, and the comparison over [x0, x1] from
+/// Segment::bounds_on (NaN where the weakest section does not exist: the line cuts further).
+BendingVariation bending_variation(const Segment& p, double Section::*I, bool eb) {
+  return {[p, I, eb](double x) { return bending_props(p.material, p.properties_at(x), p.kappa_at(x), I, eb); },
+          [p, I, eb](double x0, double x1) {
+            const Segment::Bounds b = p.bounds_on(x0, x1);
+            if (!b.weakest_exists) return BendingProps{kNaN, kNaN, kNaN, kNaN};
+            const BendingProps lo = bending_props(p.material, b.weakest, b.kappa_lo, I, eb);
+            const BendingProps hi = bending_props(p.material, b.heaviest, b.kappa_lo, I, eb);
+            return BendingProps{lo.EI, lo.kGA, hi.rhoA, hi.rhoI};
+          }};
+}
+
 /// A scene's beam in one plane, piece by piece; `I` picks the piece's second moment (Iy or Iz).
 BeamBending bending_of(const Scene& s, double Section::*I) {
   const bool eb = s.theory == Theory::EulerBernoulli;
   BeamBending out;
   out.L = s.geometry.length;
   for (const Segment& p : s.beam_pieces()) {
-    const Section sec = p.properties();
-    const Material& m = p.material;
-    const BendingStep b{p.x_from, m.E * (sec.*I), eb ? kInf : m.kappa * m.G * sec.A, m.rho * sec.A,
-                        eb ? 0.0 : m.rho * (sec.*I)};
+    const BendingProps at = bending_props(p.material, p.properties_at(p.x_from), p.kappa_at(p.x_from), I, eb);
+    const BendingVariation v = p.tapered() ? bending_variation(p, I, eb) : BendingVariation{};
     if (p.x_from == 0.0) {
-      out.EI = b.EI;
-      out.kGA = b.kGA;
-      out.rhoA = b.rhoA;
-      out.rhoI = b.rhoI;
+      out.EI = at.EI;
+      out.kGA = at.kGA;
+      out.rhoA = at.rhoA;
+      out.rhoI = at.rhoI;
+      out.varies = v;
     } else {
-      out.steps.push_back(b);
+      out.steps.push_back({p.x_from, at.EI, at.kGA, at.rhoA, at.rhoI, v});
     }
   }
   return out;
 }
 
-/// A scene's beam as a bar, piece by piece: stiffness and inertia per length from the piece.
-Bar bar_of(const Scene& s, const std::function<std::pair<double, double>(const Segment&)>& props) {
+/// A scene's beam as a bar, piece by piece: stiffness and inertia per length from the section at x
+/// (`props`), and a tapered piece's comparison (S from the weakest section, mu from the heaviest).
+Bar bar_of(const Scene& s, const std::function<BarProps(const Material&, const Section&)>& props) {
   Bar out;
   out.L = s.geometry.length;
   for (const Segment& p : s.beam_pieces()) {
-    const auto [S, mu] = props(p);
+    const BarProps at = props(p.material, p.properties_at(p.x_from));
+    BarVariation v;
+    if (p.tapered())
+      v = {[p, props](double x) { return props(p.material, p.properties_at(x)); },
+           [p, props](double x0, double x1) {
+             const Segment::Bounds b = p.bounds_on(x0, x1);
+             if (!b.weakest_exists) return BarProps{kNaN, kNaN};
+             return BarProps{props(p.material, b.weakest).S, props(p.material, b.heaviest).mu};
+           }};
     if (p.x_from == 0.0) {
-      out.S = S;
-      out.mu = mu;
+      out.S = at.S;
+      out.mu = at.mu;
+      out.varies = v;
     } else {
-      out.steps.push_back({p.x_from, S, mu});
+      out.steps.push_back({p.x_from, at.S, at.mu, v});
     }
   }
   return out;
@@ -229,33 +272,51 @@ Bar bar_of(const Scene& s, const std::function<std::pair<double, double>(const S
 
 BeamBending BeamBending::at(double x) const {
   BeamBending b{EI, kGA, rhoA, rhoI, L, {}};
+  const BendingVariation* v = varies ? &varies : nullptr;
   for (const BendingStep& s : steps)
-    if (x >= s.x_from) b = {s.EI, s.kGA, s.rhoA, s.rhoI, L, {}};
+    if (x >= s.x_from) {
+      b = {s.EI, s.kGA, s.rhoA, s.rhoI, L, {}};
+      v = s.varies ? &s.varies : nullptr;
+    }
+  if (v) {
+    const BendingProps p = v->at(x);
+    b = {p.EI, p.kGA, p.rhoA, p.rhoI, L, {}};
+  }
   return b;
+}
+
+bool BeamBending::tapered() const {
+  return static_cast<bool>(varies) || std::any_of(steps.begin(), steps.end(), [](const BendingStep& s) { return static_cast<bool>(s.varies); });
 }
 
 Bar Bar::at(double x) const {
   Bar b{S, mu, L, {}};
+  const BarVariation* v = varies ? &varies : nullptr;
   for (const BarStep& s : steps)
-    if (x >= s.x_from) b = {s.S, s.mu, L, {}};
+    if (x >= s.x_from) {
+      b = {s.S, s.mu, L, {}};
+      v = s.varies ? &s.varies : nullptr;
+    }
+  if (v) {
+    const BarProps p = v->at(x);
+    b = {p.S, p.mu, L, {}};
+  }
   return b;
+}
+
+bool Bar::tapered() const {
+  return static_cast<bool>(varies) || std::any_of(steps.begin(), steps.end(), [](const BarStep& s) { return static_cast<bool>(s.varies); });
 }
 
 BeamBending bending_xz(const Scene& s) { return bending_of(s, &Section::Iy); }
 BeamBending bending_xy(const Scene& s) { return bending_of(s, &Section::Iz); }
 
 Bar axial_bar(const Scene& s) {
-  return bar_of(s, [](const Segment& p) {
-    const Section sec = p.properties();
-    return std::pair{p.material.E * sec.A, p.material.rho * sec.A};
-  });
+  return bar_of(s, [](const Material& m, const Section& sec) { return BarProps{m.E * sec.A, m.rho * sec.A}; });
 }
 
 Bar torsion_bar(const Scene& s) {
-  return bar_of(s, [](const Segment& p) {
-    const Section sec = p.properties();
-    return std::pair{p.material.G * sec.J, p.material.rho * sec.Ip};
-  });
+  return bar_of(s, [](const Material& m, const Section& sec) { return BarProps{m.G * sec.J, m.rho * sec.Ip}; });
 }
 
 }  // namespace modalbench::exact

@@ -39,14 +39,34 @@ struct BendingLine {
                                  {scaled(p.springs.translational, kt), scaled(p.springs.rotational, kr)},
                                  {p.mass * kt, p.inertia * kr}});
     set_piece(b, b, sys.state_matrix, sys.max_wavenumber);
+    if (b.varies) sys.variation = varying(b, b.varies);
     for (const BendingStep& st : b.steps) {
       if (!(st.EI > 0 && st.rhoA > 0 && st.kGA > 0 && st.rhoI >= 0 && st.x_from > 0 && st.x_from < b.L))
         throw std::invalid_argument("beam step properties must be positive, the step inside the beam");
       LinePiece piece;
       piece.xi_from = st.x_from / b.L;
       set_piece(b, b.at(st.x_from), piece.state_matrix, piece.max_wavenumber);
+      if (st.varies) piece.variation = varying(b, st.varies);
       sys.steps.push_back(piece);
     }
+  }
+  /// A tapered piece's LineVariation: its state matrix at each xi (set_piece's, with the local
+  /// properties) and the wavenumber bound of its comparison piece over [xi0, xi1].
+  static LineVariation varying(const BeamBending& ref, const BendingVariation& v) {
+    const BeamBending r{ref.EI, ref.kGA, ref.rhoA, ref.rhoI, ref.L};
+    const auto as_beam = [r](const BendingProps& p) { return BeamBending{p.EI, p.kGA, p.rhoA, p.rhoI, r.L}; };
+    return {[r, v, as_beam](double lambda, double xi) {
+              std::function<Eigen::MatrixXd(double)> A;
+              std::function<double(double)> p;
+              set_piece(r, as_beam(v.at(xi * r.L)), A, p);
+              return A(lambda);
+            },
+            [r, v, as_beam](double lambda, double xi0, double xi1) {
+              std::function<Eigen::MatrixXd(double)> A;
+              std::function<double(double)> p;
+              set_piece(r, as_beam(v.bound(xi0 * r.L, xi1 * r.L)), A, p);
+              return p(lambda);
+            }};
   }
   /// The state matrix of a piece with properties `own`, in the units of the first piece `ref`:
   /// w' = phi + (EI0 / (kGA L^2)) Q, phi' = (EI0 / EI) M, Q' = -(rhoA / rhoA0) O2 w,
@@ -92,14 +112,34 @@ struct BarLine {
       sys.attachments.push_back({p.x / b.L, {std::isinf(p.springs.translational) ? kInf : p.springs.translational * f},
                                  {p.mass * f}});
     set_piece(b, b, sys.state_matrix, sys.max_wavenumber);
+    if (b.varies) sys.variation = varying(b, b.varies);
     for (const BarStep& st : b.steps) {
       if (!(st.S > 0 && st.mu > 0 && st.x_from > 0 && st.x_from < b.L))
         throw std::invalid_argument("bar step properties must be positive, the step inside the bar");
       LinePiece piece;
       piece.xi_from = st.x_from / b.L;
       set_piece(b, b.at(st.x_from), piece.state_matrix, piece.max_wavenumber);
+      if (st.varies) piece.variation = varying(b, st.varies);
       sys.steps.push_back(piece);
     }
+  }
+  /// A tapered piece's LineVariation (BendingLine::varying's).
+  static LineVariation varying(const Bar& ref, const BarVariation& v) {
+    const Bar r{ref.S, ref.mu, ref.L};
+    return {[r, v](double lambda, double xi) {
+              std::function<Eigen::MatrixXd(double)> A;
+              std::function<double(double)> p;
+              const BarProps at = v.at(xi * r.L);
+              set_piece(r, Bar{at.S, at.mu, r.L}, A, p);
+              return A(lambda);
+            },
+            [r, v](double lambda, double xi0, double xi1) {
+              std::function<Eigen::MatrixXd(double)> A;
+              std::function<double(double)> p;
+              const BarProps lo = v.bound(xi0 * r.L, xi1 * r.L);
+              set_piece(r, Bar{lo.S, lo.mu, r.L}, A, p);
+              return p(lambda);
+            }};
   }
   /// u' = (S0 / S) N, N' = -(mu / mu0) lambda c u in the first piece's units (as BendingLine).
   static void set_piece(const Bar& ref, const Bar& own, std::function<Eigen::MatrixXd(double)>& state_matrix,

@@ -86,10 +86,10 @@ std::string rotor_refusal(const Scene& s) {
   if (!rotor_held(s))
     return "exact solves rotors on supports that hold them (a free rotor's rigid whirl is not solved yet)";
   if (axisymmetric_shaft(s)) return "";
-  if (s.theory == Theory::EulerBernoulli && !s.is_stepped() && s.masses.empty() && s.point_supports.empty() &&
-      classical_ends(s))
+  if (s.theory == Theory::EulerBernoulli && !s.is_stepped() && !s.has_tapered_pieces() && s.masses.empty() &&
+      s.point_supports.empty() && classical_ends(s))
     return "";
-  return "exact solves an asymmetric shaft (Iy != Iz) only as a uniform Euler-Bernoulli shaft without discs or "
+  return "exact solves an asymmetric shaft (Iy != Iz) only as a uniform (neither stepped nor tapered) Euler-Bernoulli shaft without discs or "
          "supports between the ends, each end free, pinned, clamped or guided (the planes then share their mode "
          "shapes and each mode pair has a closed form); rfem models the others";
 }

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "line_models.hpp"
+#include "modalbench/gauss_legendre.hpp"
 #include "modalbench/numerics/line_mode.hpp"
 
 namespace modalbench::exact {
@@ -36,14 +37,46 @@ void add_point_masses(const PointAttachments& points, const std::function<std::p
   }
 }
 
-/// The sum over a stepped beam's pieces of f(x1, x2, piece) (a uniform beam: one piece).
-double over_pieces(const BeamBending& beam, const std::function<double(double, double, const BeamBending&)>& f) {
+/// The integral over the beam of density(x, properties at x): piece by piece, a uniform piece's by
+/// its closed form f(x1, x2, piece), a tapered one's by 8-point Gauss-Legendre on 16 parts (its
+/// properties are polynomials of degree <= 8 in x or exponentials: to rounding).
+double over_pieces(const BeamBending& beam, const std::function<double(double, double, const BeamBending&)>& f,
+                   const std::function<double(double, const BeamBending&)>& density) {
   std::vector<double> ends = {0.0};
-  for (const BendingStep& s : beam.steps) ends.push_back(s.x_from);
+  std::vector<bool> varies = {static_cast<bool>(beam.varies)};
+  for (const BendingStep& s : beam.steps) {
+    ends.push_back(s.x_from);
+    varies.push_back(static_cast<bool>(s.varies));
+  }
   ends.push_back(beam.L);
   double sum = 0;
-  for (std::size_t i = 0; i + 1 < ends.size(); ++i) sum += f(ends[i], ends[i + 1], beam.at(ends[i]));
+  for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
+    if (!varies[i]) {
+      sum += f(ends[i], ends[i + 1], beam.at(ends[i]));
+      continue;
+    }
+    constexpr int kParts = 16;
+    const double h = (ends[i + 1] - ends[i]) / kParts;
+    for (int k = 0; k < kParts; ++k)
+      for (std::size_t g = 0; g < gauss_legendre8::node.size(); ++g)
+        for (const double sign : {-1.0, 1.0}) {
+          const double x = ends[i] + (k + 0.5) * h + sign * 0.5 * h * gauss_legendre8::node[g];
+          sum += 0.5 * h * gauss_legendre8::weight[g] * density(x, beam.at(x));
+        }
+  }
   return sum;
+}
+
+/// A bar's inertia per length as a beam's rhoA, piece by piece (for over_pieces).
+BeamBending bar_as_beam(const Bar& bar) {
+  const auto variation = [](const BarVariation& v) {
+    if (!v) return BendingVariation{};
+    return BendingVariation{[v](double x) { return BendingProps{1.0, 1.0, v.at(x).mu, 0.0}; },
+                            [v](double x0, double x1) { return BendingProps{1.0, 1.0, v.bound(x0, x1).mu, 0.0}; }};
+  };
+  BeamBending b{1.0, 1.0, bar.mu, 0.0, bar.L, {}, variation(bar.varies)};
+  for (const BarStep& st : bar.steps) b.steps.push_back({st.x_from, 1.0, 1.0, st.mu, 0.0, variation(st.varies)});
+  return b;
 }
 
 bool any_spring(const PointAttachments& points) {
@@ -65,8 +98,10 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
     // the free pair's rotation about the centre of mass (M-orthogonal to the translation).
     const bool rotation_restrained = left.rotational > 0 || right.rotational > 0;
     bool rotation = false;
-    double total = over_pieces(beam, [](double a, double b, const BeamBending& p) { return p.rhoA * (b - a); });
-    double moment = over_pieces(beam, [](double a, double b, const BeamBending& p) { return p.rhoA * (b * b - a * a) / 2; });
+    double total = over_pieces(beam, [](double a, double b, const BeamBending& p) { return p.rhoA * (b - a); },
+                               [](double, const BeamBending& p) { return p.rhoA; });
+    double moment = over_pieces(beam, [](double a, double b, const BeamBending& p) { return p.rhoA * (b * b - a * a) / 2; },
+                                [](double x, const BeamBending& p) { return p.rhoA * x; });
     for (const PointAttachment& p : points) {
       total += p.mass;
       moment += p.mass * p.x;
@@ -87,14 +122,14 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
       out.modal_mass = over_pieces(beam, [pivot](double a, double b, const BeamBending& p) {
         const double c0 = a - pivot, c1 = b - pivot;  // int (x - pivot)^2 dx over the piece
         return p.rhoA * (c1 * c1 * c1 - c0 * c0 * c0) / 3.0 + p.rhoI * (b - a);
-      });
+      }, [pivot](double x, const BeamBending& p) { return p.rhoA * (x - pivot) * (x - pivot) + p.rhoI; });
       out.participation = over_pieces(beam, [pivot](double a, double b, const BeamBending& p) {
         return p.rhoA * 0.5 * ((b - pivot) * (b - pivot) - (a - pivot) * (a - pivot));
-      });
+      }, [pivot](double x, const BeamBending& p) { return p.rhoA * (x - pivot); });
     } else {
       out.modal_mass = out.participation = over_pieces(beam, [](double a, double b, const BeamBending& p) {
         return p.rhoA * (b - a);
-      });
+      }, [](double, const BeamBending& p) { return p.rhoA; });
     }
     add_point_masses(points, [&](double x) { return std::pair{rotation ? x - pivot : 1.0, rotation ? 1.0 : 0.0}; }, out);
     return out;
@@ -116,6 +151,7 @@ LineShape bending_shape(const BeamBending& beam, EndSprings left, EndSprings rig
   // |rhoA w L| <= sqrt(rhoA m(x)), m the modal mass's integrand: of the mode's size on average.
   double rhoA_max = beam.rhoA;
   for (const BendingStep& p : beam.steps) rhoA_max = std::max(rhoA_max, p.rhoA);
+  for (int k = 0; k <= 64 && beam.tapered(); ++k) rhoA_max = std::max(rhoA_max, beam.at(L * k / 64.0).rhoA);
   out.participation = L * mode.integrate([&](const Eigen::VectorXd& d, double xi) { return beam.at(xi * L).rhoA * d[0] * L; },
                                          std::sqrt(rhoA_max * out.modal_mass / L));
   add_point_masses(points, [&](double x) {
@@ -132,13 +168,11 @@ LineShape bar_shape(const Bar& bar, double k_left, double k_right, double omega,
   if (omega == 0.0) {
     out.disp.assign(xs.size(), 1.0);
     out.rot.assign(xs.size(), 0.0);
-    // The bar's mass, piece by piece.
-    double mass = 0, a = 0;
-    for (const BarStep& st : bar.steps) {
-      mass += bar.at(a).mu * (st.x_from - a);
-      a = st.x_from;
-    }
-    out.modal_mass = out.participation = mass + bar.at(a).mu * (L - a);
+    // The bar's mass, piece by piece (a tapered one's as over_pieces).
+    const BeamBending as_beam = bar_as_beam(bar);
+    out.modal_mass = out.participation = over_pieces(as_beam, [](double a, double b, const BeamBending& p) {
+      return p.rhoA * (b - a);
+    }, [](double, const BeamBending& p) { return p.rhoA; });
     add_point_masses(points, [](double) { return std::pair{1.0, 0.0}; }, out);
     return out;
   }

@@ -2,6 +2,7 @@
 #include "whirl_line.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "beam_attachments.hpp"
 #include "modalbench/numerics/line_mode.hpp"
@@ -44,6 +45,34 @@ void set_whirl_piece(const BeamBending& ref, const BeamBending& own, double rhoI
   };
 }
 
+/// A tapered piece's whirl line variation: set_whirl_piece's state matrix with the properties at
+/// each xi, and the wavenumber bound of a comparison over [xi0, xi1] (EI and kGA lowest, rhoA highest,
+/// the rotary term at its largest size: rhoI lambda + rhoIp spin sqrt(lambda) with both highest).
+LineVariation whirl_variation(const BeamBending& ref, const Segment& piece, const BeamBending& beam, bool eb,
+                              const Whirling& w) {
+  const double L = ref.L;
+  const BeamBending r{ref.EI, ref.kGA, ref.rhoA, ref.rhoI, L};
+  const auto rho_ip = [eb, rho = piece.material.rho](const Section& sec) { return eb ? 0.0 : rho * sec.Ip; };
+  return {[r, piece, beam, rho_ip, w, L](double lambda, double xi) {
+            std::function<Eigen::MatrixXd(double)> A;
+            std::function<double(double)> p;
+            set_whirl_piece(r, beam.at(xi * L), rho_ip(piece.properties_at(xi * L)), w, A, p);
+            return A(lambda);
+          },
+          [r, piece, beam, rho_ip, w, L, eb](double lambda, double xi0, double xi1) {
+            const Segment::Bounds b = piece.bounds_on(xi0 * L, xi1 * L);
+            if (!b.weakest_exists) return std::numeric_limits<double>::quiet_NaN();
+            const Material& m = piece.material;
+            const double EI = m.E * b.weakest.Iy, kGA = eb ? kInf : b.kappa_lo * m.G * b.weakest.A;
+            const double rhoA = m.rho * b.heaviest.A, rhoI = eb ? 0.0 : m.rho * b.heaviest.Iy, rhoIp = rho_ip(b.heaviest);
+            const double L2 = L * L, lam = std::abs(lambda);
+            const double O2 = lam * rhoA * L2 * L2 / EI, s_own = std::isinf(kGA) ? 0.0 : EI / (kGA * L2);
+            const double rotary = w.synchronous ? (rhoI + rhoIp) * lam : rhoI * lam + rhoIp * std::abs(w.spin) * std::sqrt(lam);
+            const double R = rotary * L2 / EI;
+            return 1.25 * std::sqrt(O2 * s_own + R + std::sqrt(O2) + std::sqrt(O2 * s_own * R));
+          }};
+}
+
 }  // namespace
 
 BendingLine whirl_line(const Scene& s, const Whirling& w) {
@@ -54,10 +83,11 @@ BendingLine whirl_line(const Scene& s, const Whirling& w) {
   const bool eb = s.theory == Theory::EulerBernoulli;
   const std::vector<Segment> pieces = s.beam_pieces();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const double rhoIp = eb ? 0.0 : pieces[i].material.rho * pieces[i].properties().Ip;
+    const double rhoIp = eb ? 0.0 : pieces[i].material.rho * pieces[i].properties_at(pieces[i].x_from).Ip;
     const BeamBending own = b.at(pieces[i].x_from);
     if (i == 0) set_whirl_piece(b, own, rhoIp, w, line.sys.state_matrix, line.sys.max_wavenumber);
     else set_whirl_piece(b, own, rhoIp, w, line.sys.steps[i - 1].state_matrix, line.sys.steps[i - 1].max_wavenumber);
+    if (pieces[i].tapered()) (i == 0 ? line.sys.variation : line.sys.steps[i - 1].variation) = whirl_variation(b, pieces[i], b, eb, w);
   }
   // line_points puts the point supports first, then the masses in order (beam_attachments.cpp).
   const double kr = b.L / b.EI;

@@ -12,7 +12,7 @@
 
 namespace modalbench {
 
-LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
+LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m), sys_(sys), lambda_(lambda) {
   if (!(lambda > 0)) throw std::invalid_argument("LineMode: lambda must be > 0 (rigid modes are the caller's)");
   const double sigma = lambda * (1.0 + 1e-11);
   // One set of nodes for both assemblies: the segment lengths follow the wavenumbers at lambda.
@@ -23,6 +23,12 @@ LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
     const double q = piece.max_wavenumber(lambda);
     piece.max_wavenumber = [q](double) { return q; };
   }
+  // A varying piece's cuts likewise, by its bound at lambda.
+  auto fix = [lambda](LineVariation& v) {
+    if (v) v.wavenumber_over = [bound = v.wavenumber_over, lambda](double, double a, double b) { return bound(lambda, a, b); };
+  };
+  fix(fixed.variation);
+  for (LinePiece& piece : fixed.steps) fix(piece.variation);
   const AssembledLine shifted = assemble(fixed, sigma);
   const long n = static_cast<long>(shifted.xi.size()) * m_;
   // A deterministic start with every component present.
@@ -41,7 +47,8 @@ LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
   for (std::size_t i = 0; i + 1 < nodes; ++i) {
     const double h = xi_[i + 1] - xi_[i];
     A_.push_back(sys.state_matrix_at(lambda, 0.5 * (xi_[i] + xi_[i + 1])));
-    const Eigen::MatrixXd K = segment_dynamic_stiffness(A_.back(), h);
+    const Eigen::MatrixXd K = sys.variation_at(0.5 * (xi_[i] + xi_[i + 1])) ? line_segment_stiffness(sys, lambda, xi_[i], xi_[i + 1])
+                                                                         : segment_dynamic_stiffness(A_.back(), h);
     Eigen::VectorXd dd(2 * m_);
     dd << v.segment(static_cast<long>(i) * m_, m_), v.segment(static_cast<long>(i + 1) * m_, m_);
     const Eigen::VectorXd fk = K * dd;  // [-f(0); f(h)]
@@ -55,6 +62,8 @@ LineMode::LineMode(const LineSystem& sys, double lambda) : m_(sys.m) {
 }
 
 Eigen::MatrixXd LineMode::transfer(std::size_t segment, double s) const {
+  if (sys_.variation_at(0.5 * (xi_[segment] + xi_[segment + 1])))
+    return line_transfer(sys_, lambda_, xi_[segment], xi_[segment] + s);
   Eigen::MatrixXd B = A_[segment] * s;
   const Eigen::VectorXd scale = balance_in_place(B, 20);
   return scale.asDiagonal() * Eigen::MatrixXd(B.exp()) * scale.cwiseInverse().asDiagonal();

@@ -13,6 +13,7 @@
 
 #include "modalbench/numerics/balancing.hpp"
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
+#include "modalbench/numerics/varying_transfer.hpp"
 
 namespace modalbench {
 
@@ -39,7 +40,85 @@ double LineSystem::max_wavenumber_at(double lambda, double xi) const {
   return p < 0 ? max_wavenumber(lambda) : steps[static_cast<std::size_t>(p)].max_wavenumber(lambda);
 }
 
+const LineVariation& LineSystem::variation_at(double xi) const {
+  const int p = piece_at(xi);
+  return p < 0 ? variation : steps[static_cast<std::size_t>(p)].variation;
+}
+
 namespace {
+
+/// Magnus steps doubled until two agree to this (estimated relative error of a transfer matrix)...
+constexpr double kMagnusTolerance = 1e-15;
+/// ... and a transfer matrix whose estimate stays above this after 4096 steps is refused.
+constexpr double kMagnusRefused = 1e-12;
+/// A gap inside a varying piece has at least this many segments (each a Magnus product), so that
+/// a distributed load's Gauss points per segment integrate its smooth fixed-end reactions to
+/// rounding at lambda = 0, where the wavenumbers would allow one segment.
+constexpr int kMinVaryingSegments = 8;
+
+VaryingTransfer magnus(const std::function<Eigen::MatrixXd(double)>& A, double x0, double x1, const Eigen::VectorXd& d = {}) {
+  // Neighbouring segments of a piece need about the same steps: the first (coarse) product takes a
+  // quarter of the last count, so a milder segment is accepted at half of it and a like one after
+  // one more doubling (the steps, not the tolerance, depend on what came before).
+  thread_local int last_steps = 4;
+  VaryingTransfer t = varying_transfer(A, x0, x1, kMagnusTolerance, d, std::max(1, last_steps / 4));
+  last_steps = t.steps;
+  if (!(t.error <= kMagnusRefused))
+    throw std::runtime_error("varying piece: the Magnus transfer matrix over [" + std::to_string(x0) + ", " +
+                             std::to_string(x1) + "] is accurate only to " + std::to_string(t.error) + " after " +
+                             std::to_string(t.steps) + " steps");
+  return t;
+}
+
+/// exp(A t), balanced like the segment matrices.
+Eigen::MatrixXd transfer(const Eigen::MatrixXd& A, double t) {
+  if (t == 0.0) return Eigen::MatrixXd::Identity(A.rows(), A.cols());
+  Eigen::MatrixXd B = A * t;
+  const Eigen::VectorXd s = balance_in_place(B, 20);
+  return s.asDiagonal() * Eigen::MatrixXd(B.exp()) * s.cwiseInverse().asDiagonal();
+}
+
+/// K(lambda) of the varying segment [x0, x1] with its divided difference (SegmentDivided), from the
+/// Magnus transfer of Van Loan's block field, scaled once by A(0)'s balancing as the uniform one.
+SegmentDivided varying_divided(const LineVariation& v, double lambda, double x0, double x1) {
+  if (lambda == 0.0) {
+    const VaryingTransfer t = magnus([&](double x) { return v.state(0.0, x); }, x0, x1);
+    return {segment_stiffness_of_transfer(t.T), Eigen::MatrixXd::Zero(t.T.rows(), t.T.cols())};
+  }
+  Eigen::MatrixXd B0 = v.state(0.0, 0.5 * (x0 + x1)) * (x1 - x0);
+  const Eigen::Index n2 = B0.rows();
+  const Eigen::VectorXd s0 = balance_in_place(B0, 20);
+  Eigen::VectorXd scale(2 * n2);
+  scale << s0, s0;
+  const auto block = [&](double x) {
+    const Eigen::MatrixXd A1 = v.state(lambda, x), A0 = v.state(0.0, x);
+    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(2 * n2, 2 * n2);
+    X.topLeftCorner(n2, n2) = A1;
+    X.topRightCorner(n2, n2) = (A1 - A0) / lambda;
+    X.bottomRightCorner(n2, n2) = A0;
+    return X;
+  };
+  const Eigen::MatrixXd E = magnus(block, x0, x1, scale).T;
+  return segment_divided_from_transfers(E.topLeftCorner(n2, n2), E.bottomRightCorner(n2, n2), E.topRightCorner(n2, n2));
+}
+
+/// Cuts the gap [a, b] of a varying piece into segments each of which has |p| h <= 1 by its own
+/// comparison bound (so none has a clamped frequency below lambda), at least `min_parts` of them;
+/// appends the nodes after a (b last).
+void cut_varying(const LineVariation& v, double lambda, double a, double b, int min_parts, std::vector<double>& xi,
+                 int depth = 0) {
+  const double len = b - a, p = v.wavenumber_over(lambda, a, b);
+  const bool bounded = std::isfinite(p) && p >= 0;
+  if (bounded && p * len <= 1.0 && min_parts <= 1) {
+    xi.push_back(b);
+    return;
+  }
+  if (depth > 40) throw std::runtime_error("LineSystem: a varying piece's wavenumber bound does not fall as it is cut");
+  const double want = bounded ? std::ceil(len * p) : 2.0;
+  if (want > 1e7) throw std::runtime_error("LineSystem: more than 1e7 segments needed at this frequency");
+  const int n = std::max({2, min_parts, static_cast<int>(want)});
+  for (int j = 1; j <= n; ++j) cut_varying(v, lambda, a + len * (j - 1) / n, j == n ? b : a + len * j / n, 1, xi, depth + 1);
+}
 
 /// The state matrices of the line's segments at lambda, one per distinct piece (computed once).
 class PieceMatrices {
@@ -87,6 +166,10 @@ std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
   std::vector<double> xi = {0.0};
   for (std::size_t g = 0; g + 1 < breaks.size(); ++g) {
     const double len = breaks[g + 1] - breaks[g];
+    if (const LineVariation& v = sys.variation_at(0.5 * (breaks[g] + breaks[g + 1]))) {
+      cut_varying(v, lambda, breaks[g], breaks[g + 1], kMinVaryingSegments, xi);
+      continue;
+    }
     const double p = std::max(sys.max_wavenumber_at(lambda, 0.5 * (breaks[g] + breaks[g + 1])), 1e-12);
     if (!std::isfinite(p)) throw std::runtime_error("LineSystem: wavenumber bound is not finite");
     const double pieces = std::ceil(len * p);
@@ -254,7 +337,10 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
   for (int i = 0; i + 1 < n; ++i) {
     const double h = xi[i + 1] - xi[i], mid = 0.5 * (xi[i] + xi[i + 1]);
     const int piece = sys.piece_at(mid);
-    if (!same_length(h, last_h) || piece != last_piece) {
+    if (const LineVariation& v = sys.variation_at(mid)) {
+      seg = varying_divided(v, lambda, xi[i], xi[i + 1]);
+      last_piece = -2;
+    } else if (!same_length(h, last_h) || piece != last_piece) {
       seg = segment_dynamic_stiffness_divided(A1.at(mid), A0.at(mid), lambda, h);
       last_h = h;
       last_piece = piece;
@@ -325,6 +411,17 @@ int split_count(const Split& sp) {
 }
 }  // namespace
 
+Eigen::MatrixXd line_transfer(const LineSystem& sys, double lambda, double x0, double x1) {
+  if (const LineVariation& v = sys.variation_at(0.5 * (x0 + x1)))
+    return magnus([&](double x) { return v.state(lambda, x); }, x0, x1).T;
+  return transfer(sys.state_matrix_at(lambda, 0.5 * (x0 + x1)), x1 - x0);
+}
+
+Eigen::MatrixXd line_segment_stiffness(const LineSystem& sys, double lambda, double x0, double x1) {
+  if (sys.variation_at(0.5 * (x0 + x1))) return segment_stiffness_of_transfer(line_transfer(sys, lambda, x0, x1));
+  return segment_dynamic_stiffness(sys.state_matrix_at(lambda, 0.5 * (x0 + x1)), x1 - x0);
+}
+
 AssembledLine assemble(const LineSystem& sys, double lambda) {
   const int m = sys.m;
   const std::vector<double> xi = line_nodes(sys, lambda);
@@ -337,7 +434,10 @@ AssembledLine assemble(const LineSystem& sys, double lambda) {
   for (std::size_t i = 0; i + 1 < xi.size(); ++i) {
     const double h = xi[i + 1] - xi[i], mid = 0.5 * (xi[i] + xi[i + 1]);
     const int piece = sys.piece_at(mid);
-    if (!same_length(h, last_h) || piece != last_piece) {
+    if (sys.variation_at(mid)) {
+      k_seg = line_segment_stiffness(sys, lambda, xi[i], xi[i + 1]);
+      last_piece = -2;
+    } else if (!same_length(h, last_h) || piece != last_piece) {
       k_seg = segment_dynamic_stiffness(A.at(mid), h);
       last_h = h;
       last_piece = piece;
@@ -418,6 +518,17 @@ int count_below(const LineSystem& sys, double lambda) {
   std::vector<std::pair<double, LongSegment>> gaps;  // (left end, segment)
   std::function<void(double, double, int)> add_gap = [&](double a, double b, int depth) {
     const double len = b - a, mid = 0.5 * (a + b);
+    if (const LineVariation& v = sys.variation_at(mid)) {
+      // A varying piece: segments that provably have no clamped frequency below lambda (J0 = 0).
+      std::vector<double> cuts = {a};
+      cut_varying(v, lambda, a, b, 1, cuts);
+      for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
+        LongSegment seg;
+        seg.K = line_segment_stiffness(sys, lambda, cuts[j], cuts[j + 1]);
+        gaps.emplace_back(cuts[j], std::move(seg));
+      }
+      return;
+    }
     const double p = std::max(sys.max_wavenumber_at(lambda, mid), 1e-12);
     if (!std::isfinite(p)) throw std::runtime_error("LineSystem: wavenumber bound is not finite");
     const int levels = static_cast<int>(std::ceil(std::log2(std::max(1.0, std::ceil(len * p)))));
@@ -500,14 +611,6 @@ Eigen::VectorXd solve_line(const LineSystem& sys, const AssembledLine& asmb, dou
 
 namespace {
 
-/// exp(A t), balanced like the segment matrices.
-Eigen::MatrixXd transfer(const Eigen::MatrixXd& A, double t) {
-  if (t == 0.0) return Eigen::MatrixXd::Identity(A.rows(), A.cols());
-  Eigen::MatrixXd B = A * t;
-  const Eigen::VectorXd s = balance_in_place(B, 20);
-  return s.asDiagonal() * Eigen::MatrixXd(B.exp()) * s.cwiseInverse().asDiagonal();
-}
-
 /// The node at x (>= 0), or -1 with `seg` the segment [xi[seg], xi[seg + 1]] holding x.
 int locate(const AssembledLine& asmb, double x, int& seg) {
   const auto& xi = asmb.xi;
@@ -519,11 +622,16 @@ int locate(const AssembledLine& asmb, double x, int& seg) {
   return -1;
 }
 
-/// Fixed-end state forces (left F_a, right F_c) of a clamped segment of length h under a point
-/// action f at offset s: the state's force part jumps by -f there, and d = 0 at both ends.
-std::pair<Eigen::VectorXd, Eigen::VectorXd> fixed_end(const Eigen::MatrixXd& A, int m, double h, double s,
-                                                      const Eigen::VectorXd& f) {
-  const Eigen::MatrixXd Th = transfer(A, h), Tr = transfer(A, h - s);
+/// Fixed-end state forces (left F_a, right F_c) of the clamped segment [a, c] under a point action
+/// f at x: the state's force part jumps by -f there, and d = 0 at both ends.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> fixed_end(const LineSystem& sys, double lambda, double a, double c,
+                                                      double x, const Eigen::VectorXd& f) {
+  const int m = sys.m;
+  const double h = c - a, s = x - a;  // a uniform piece's lengths as they always were formed
+  const bool varies = static_cast<bool>(sys.variation_at(0.5 * (a + c)));
+  const Eigen::MatrixXd A = varies ? Eigen::MatrixXd() : sys.state_matrix_at(lambda, 0.5 * (a + c));
+  const Eigen::MatrixXd Th = varies ? line_transfer(sys, lambda, a, c) : transfer(A, h);
+  const Eigen::MatrixXd Tr = varies ? line_transfer(sys, lambda, x, c) : transfer(A, h - s);
   const Eigen::VectorXd jump = -f;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(Th.topRightCorner(m, m));
   const Eigen::VectorXd Fa = -lu.solve(Tr.topRightCorner(m, m) * jump);
@@ -543,7 +651,7 @@ void add_point_load(const LineSystem& sys, const AssembledLine& asmb, double lam
     return;
   }
   const double a = asmb.xi[static_cast<std::size_t>(seg)], c = asmb.xi[static_cast<std::size_t>(seg) + 1];
-  const auto [Fa, Fc] = fixed_end(sys.state_matrix_at(lambda, 0.5 * (a + c)), m, c - a, p.xi - a, p.f);
+  const auto [Fa, Fc] = fixed_end(sys, lambda, a, c, p.xi, p.f);
   // Equivalent nodal loads: minus the fixed-end reactions [-F_a; F_c] of K's convention.
   F.segment(static_cast<Eigen::Index>(seg) * m, m) += Fa;
   F.segment(static_cast<Eigen::Index>(seg + 1) * m, m) -= Fc;
@@ -557,19 +665,18 @@ Eigen::VectorXd state_at(const LineSystem& sys, const AssembledLine& asmb, doubl
   const int last = static_cast<int>(asmb.xi.size()) - 1;
   if (node >= 0) seg = std::min(node, last - 1);  // a node: the segment beyond it (the last: before it)
   const double a = asmb.xi[static_cast<std::size_t>(seg)], c = asmb.xi[static_cast<std::size_t>(seg) + 1];
-  const Eigen::MatrixXd A = sys.state_matrix_at(lambda, 0.5 * (a + c));
-  const Eigen::MatrixXd K = segment_dynamic_stiffness(A, c - a);
+  const Eigen::MatrixXd K = line_segment_stiffness(sys, lambda, a, c);
   Eigen::VectorXd dd(2 * m);
   dd << d.segment(static_cast<Eigen::Index>(seg) * m, m), d.segment(static_cast<Eigen::Index>(seg + 1) * m, m);
   // The segment's end force at a: K d plus the fixed-end reactions of the loads inside it.
   Eigen::VectorXd Fa = -(K.topRows(m) * dd);
   for (const auto& p : loads)
-    if (p.xi > a && p.xi < c) Fa += fixed_end(A, m, c - a, p.xi - a, p.f).first;
+    if (p.xi > a && p.xi < c) Fa += fixed_end(sys, lambda, a, c, p.xi, p.f).first;
   Eigen::VectorXd state(2 * m);
   state << dd.head(m), Fa;
-  Eigen::VectorXd out = transfer(A, x - a) * state;
-  for (const auto& p : loads)
-    if (p.xi > a && p.xi < c && p.xi <= x) out += transfer(A, x - p.xi).rightCols(m) * (-p.f);  // the jump -f carried to x
+  Eigen::VectorXd out = line_transfer(sys, lambda, a, x) * state;
+  for (const auto& p : loads)  // the jump -f carried to x
+    if (p.xi > a && p.xi < c && p.xi <= x) out += line_transfer(sys, lambda, p.xi, x).rightCols(m) * (-p.f);
   // At a node the displacements are the solution's own (not carried through rounding).
   if (node >= 0) out.head(m) = d.segment(static_cast<Eigen::Index>(node) * m, m);
   return out;

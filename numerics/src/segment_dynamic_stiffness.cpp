@@ -120,6 +120,9 @@ Mat exp_anticommuting(const Mat& B, const Eigen::VectorXd& r) {
   return T;
 }
 
+template <class Mat>
+Mat stiffness_of_transfer(const Mat& T, double* asymmetry, double* log_abs_det_tdf);
+
 // exp() is accurate relative to the norm of its argument; the state matrices mix entries
 // of very different size (w, phi, Q, M), so balance first (diagonal similarity by powers
 // of two, Parlett & Reinsch) and undo it afterwards: T = D exp(D^-1 A h D) D^-1. With the
@@ -130,7 +133,6 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
                      const Eigen::VectorXd* p = nullptr) {
   const Eigen::Index n2 = A.rows();
   if (A.cols() != n2 || n2 % 2 != 0) throw std::invalid_argument("state matrix must be square of even size");
-  const Eigen::Index m = n2 / 2;
   Mat B = A * h;
   const Eigen::VectorXd scale = balance_in_place(B, 20);
   Mat E;
@@ -140,6 +142,13 @@ Mat segment_dsm_impl(const Mat& A, double h, double* asymmetry, double* log_abs_
     E = B.exp();
   }
   const Mat T = scale.asDiagonal() * E * scale.cwiseInverse().asDiagonal();
+  return stiffness_of_transfer(T, asymmetry, log_abs_det_tdf);
+}
+
+/// K_seg from the segment's transfer matrix T (the header's formula), symmetrised.
+template <class Mat>
+Mat stiffness_of_transfer(const Mat& T, double* asymmetry, double* log_abs_det_tdf) {
+  const Eigen::Index n2 = T.rows(), m = n2 / 2;
   const auto Tdd = T.topLeftCorner(m, m), Tdf = T.topRightCorner(m, m);
   const auto Tfd = T.bottomLeftCorner(m, m), Tff = T.bottomRightCorner(m, m);
   Eigen::PartialPivLU<Mat> lu(Tdf);
@@ -304,6 +313,11 @@ Eigen::VectorXcd state_wavenumbers(const Eigen::MatrixXd& A) {
 }
 std::optional<Eigen::VectorXd> reflection_signs(const Eigen::MatrixXcd& A) { return reflection_signs_impl(A); }
 
+Eigen::MatrixXd segment_stiffness_of_transfer(const Eigen::MatrixXd& T, double* asymmetry) {
+  if (T.rows() != T.cols() || T.rows() % 2 != 0) throw std::invalid_argument("transfer matrix must be square of even size");
+  return stiffness_of_transfer(T, asymmetry, nullptr);
+}
+
 Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry,
                                           double* log_abs_det_tdf) {
   return segment_dsm_impl(A, h, asymmetry, log_abs_det_tdf);
@@ -325,7 +339,6 @@ SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda
     out.dK = Eigen::MatrixXd::Zero(n2, n2);
     return out;
   }
-  const Eigen::Index m = n2 / 2;
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(2 * n2, 2 * n2);
   X.topLeftCorner(n2, n2) = A_lambda * h;
   X.topRightCorner(n2, n2) = (A_lambda - A_0) * (h / lambda);
@@ -338,7 +351,12 @@ SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda
   scale << s0, s0;
   X = scale.cwiseInverse().asDiagonal() * X * scale.asDiagonal();
   const Eigen::MatrixXd E = scale.asDiagonal() * Eigen::MatrixXd(X.exp()) * scale.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd T1 = E.topLeftCorner(n2, n2), dT = E.topRightCorner(n2, n2), T0 = E.bottomRightCorner(n2, n2);
+  return segment_divided_from_transfers(E.topLeftCorner(n2, n2), E.bottomRightCorner(n2, n2), E.topRightCorner(n2, n2));
+}
+
+SegmentDivided segment_divided_from_transfers(const Eigen::MatrixXd& T1, const Eigen::MatrixXd& T0, const Eigen::MatrixXd& dT) {
+  const Eigen::Index n2 = T1.rows(), m = n2 / 2;
+  SegmentDivided out;
   auto blocks = [m](const Eigen::MatrixXd& T) {
     return std::array<Eigen::MatrixXd, 4>{T.topLeftCorner(m, m), T.topRightCorner(m, m), T.bottomLeftCorner(m, m),
                                           T.bottomRightCorner(m, m)};

@@ -108,8 +108,8 @@ constexpr double kD0 = 0.05, kD1 = 0.03;
 
 /// The k-th xi-derivative of basis function j (0 J, 1 Y, 2 I, 3 K) at z, without the factors
 /// common to a row ((2 beta^2)^k) or to a column.
-ld cone_basis(int j, int k, ld z) {
-  const ld n = 2 + k, p = std::pow(z, -n);
+ld cone_basis(int j, int k, ld z, int order = 2) {
+  const ld n = order + k, p = std::pow(z, -n);
   switch (j) {
     case 0: return (k % 2 ? -1 : 1) * p * std::cyl_bessel_j(n, z);
     case 1: return (k % 2 ? -1 : 1) * p * std::cyl_neumann(n, z);
@@ -133,17 +133,34 @@ ld cone_determinant(ld omega) {
   return m.determinant();
 }
 
-/// The first `count` natural frequencies (rad/s) of the cone: sign changes of its determinant on a
-/// grid 0.1 % apart, then bisection in long double.
-std::vector<ld> cone_frequencies(int count) {
+// A wedge: a rectangle whose height (in the bending plane) falls linearly from kD0 to kD1 at a
+// constant width, so that with xi from the apex A ~ xi and I ~ xi^3, and (xi^3 w'')'' =
+// beta^4 xi w (beta^4 = 12 rho omega^2 / (E a^2), h = a xi) factors as (xi D^2 + 2 D)^2 w =
+// beta^4 w: w = xi^(-1/2) Z_1(2 beta sqrt(xi)) (Cranch & Adler 1956), the cone's basis one order
+// lower, with the same clamped and free end conditions.
+ld wedge_determinant(ld omega) {
+  const ld a = (kD0 - kD1) / kL, xc = kD0 / a, xt = kD1 / a;
+  const ld beta = std::pow(12 * rho * omega * omega / (E * a * a), 0.25L);
+  const ld zc = 2 * beta * std::sqrt(xc), zt = 2 * beta * std::sqrt(xt);
+  Eigen::Matrix<ld, 4, 4> m;
+  const ld zs[4] = {zc, zc, zt, zt};
+  for (int r = 0; r < 4; ++r)
+    for (int j = 0; j < 4; ++j)
+      m(r, j) = cone_basis(j, r, zs[r], 1) * (j == 2 ? std::exp(-zc) : j == 3 ? std::exp(zt) : 1);
+  return m.determinant();
+}
+
+/// The first `count` roots (rad/s) of a determinant: sign changes on a grid 0.1 % apart, then
+/// bisection in long double.
+std::vector<ld> roots_of(ld (*determinant)(ld), int count) {
   std::vector<ld> out;
-  ld lo = 10, flo = cone_determinant(lo);
+  ld lo = 10, flo = determinant(lo);
   for (ld hi = lo * 1.001L; static_cast<int>(out.size()) < count && hi < 1e6; hi *= 1.001L) {
-    const ld fhi = cone_determinant(hi);
+    const ld fhi = determinant(hi);
     if ((flo < 0) != (fhi < 0)) {
       ld x0 = lo, x1 = hi, f0 = flo;
       for (int i = 0; i < 200 && x1 - x0 > 1e-17L * x1; ++i) {
-        const ld xm = (x0 + x1) / 2, fm = cone_determinant(xm);
+        const ld xm = (x0 + x1) / 2, fm = determinant(xm);
         if ((f0 < 0) == (fm < 0)) x0 = xm, f0 = fm;
         else x1 = xm;
       }
@@ -153,6 +170,23 @@ std::vector<ld> cone_frequencies(int count) {
     flo = fhi;
   }
   return out;
+}
+std::vector<ld> cone_frequencies(int count) { return roots_of(cone_determinant, count); }
+std::vector<ld> wedge_frequencies(int count) { return roots_of(wedge_determinant, count); }
+
+/// exact's frequencies against a closed form's: its Magnus transfer matrices are estimated to
+/// 1e-15 and its count's bisection stops at 1e-13; 1e-11 leaves the determinant's own rounding
+/// (long double bisection to 1e-17) far below.
+void expect_exact(const Scene& s, const std::vector<ld>& ref) {
+  const Result r = registry().get("exact").solve_default(s, Options{});
+  BOOST_TEST_CONTEXT("exact: " << r.summary.message) {
+    BOOST_REQUIRE(r.summary.status == Status::Success);
+    BOOST_REQUIRE_GE(r.frequencies_rad_s.size(), ref.size());
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+      BOOST_TEST_INFO("mode " << i + 1 << ": " << r.frequencies_rad_s[i] << " against " << static_cast<double>(ref[i]));
+      BOOST_TEST(rel(r.frequencies_rad_s[i], static_cast<double>(ref[i])) < 1e-11);
+    }
+  }
 }
 
 }  // namespace
@@ -286,6 +320,18 @@ BOOST_AUTO_TEST_CASE(tapered_cantilever_tip_deflection_and_weight) {
   }
   BOOST_TEST_INFO("tip deflection errors " << err[0] << ", " << err[1] << ", " << err[2]);
   BOOST_TEST(std::abs(std::log2(err[1] / err[2]) - 2.0) < 0.15);
+  // exact: the Magnus transfer of the tapered piece and the weight's Gauss points on its segments
+  // give the integrals to about 1e-13 (the references' Simpson rules to about 1e-14); the reaction
+  // is a residual of K d at the clamp, whose rounding scales with the segments' stiffness (1e-10,
+  // as rfem's above).
+  const Result e = registry().get("exact").solve_default(s, Options{});
+  BOOST_TEST_CONTEXT("exact: " << e.summary.message) {
+    BOOST_REQUIRE(e.summary.status == Status::Success);
+    BOOST_REQUIRE_EQUAL(e.deflections.size(), 1u);
+    BOOST_TEST(rel(e.deflections[0].w, total) < 1e-11);
+    BOOST_REQUIRE_EQUAL(e.reactions.size(), 1u);
+    BOOST_TEST(rel(e.reactions[0].force[2], 1000.0 + weight) < 1e-10);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(exponential_weight_is_carried_whole) {
@@ -328,14 +374,11 @@ BOOST_AUTO_TEST_CASE(a_staircase_tends_to_the_taper_at_second_order) {
 
 BOOST_AUTO_TEST_CASE(back_ends_without_tapers_say_so) {
   const Scene s = parse_scene(beam("euler-bernoulli", kSdll10, "x0 = \"clamped\"\nxL = \"clamped\"", "", 2), "t.toml");
-  for (const std::string name : {"exact", "difference_eq"}) {
-    const Capability c = registry().get(name).supports(s);
-    BOOST_TEST_INFO(name << ": " << c.reason);
-    BOOST_TEST(!c.any());
-    BOOST_TEST(c.reason.find("tapered") != std::string::npos);
-  }
-  BOOST_TEST(registry().get("rfem").supports(s).modes);
-  BOOST_TEST(registry().get("dtfm").supports(s).modes);
+  const Capability c = registry().get("difference_eq").supports(s);
+  BOOST_TEST_INFO(c.reason);
+  BOOST_TEST(!c.any());
+  BOOST_TEST(c.reason.find("tapered") != std::string::npos);
+  for (const std::string name : {"exact", "rfem", "dtfm"}) BOOST_TEST(registry().get(name).supports(s).modes);
 }
 
 BOOST_AUTO_TEST_CASE(dtfm_staircase_tends_to_the_exponential_beam_at_second_order) {
@@ -382,10 +425,10 @@ BOOST_AUTO_TEST_CASE(dtfm_staircase_tends_to_the_exponential_beam_at_second_orde
   BOOST_TEST(bad.summary.message.find("the uniform steps per tapered piece") != std::string::npos);
 }
 
-BOOST_AUTO_TEST_CASE(a_conical_shaft_whirls_alike_on_rfem_and_dtfm) {
+BOOST_AUTO_TEST_CASE(a_conical_shaft_whirls_alike_on_rfem_dtfm_and_exact) {
   // The built-in conical shaft with a disc: rfem's integrated cells and dtfm's staircase are two
   // models of the tapered Timoshenko shaft; their Campbell diagrams and critical speeds agree within
-  // the sum of their own estimates.
+  // the sum of their own estimates, and rfem's lie within its estimate of exact's.
   const Scene s = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/conical_shaft_disc.toml");
   BOOST_REQUIRE(s.has_tapered_pieces());
   const Result rf = registry().get("rfem").solve_default(s, Options{});
@@ -407,6 +450,23 @@ BOOST_AUTO_TEST_CASE(a_conical_shaft_whirls_alike_on_rfem_and_dtfm) {
   }
   BOOST_REQUIRE(!rf.campbell.forward_criticals.empty());
   BOOST_TEST(rel(dt.campbell.forward_criticals[0], rf.campbell.forward_criticals[0]) <= bound);
+  // exact (the whirl lines' Magnus transfer matrices): rfem within its own estimate of it.
+  const Result ex = registry().get("exact").solve_default(s, Options{});
+  BOOST_REQUIRE_MESSAGE(ex.ok(), ex.summary.message);
+  const double rf_bound = rf.summary.error_estimate.campbell;
+  BOOST_REQUIRE_EQUAL(rf.campbell.points.size(), ex.campbell.points.size());
+  for (std::size_t p = 0; p < ex.campbell.points.size(); ++p) {
+    const auto &a = rf.campbell.points[p], &b = ex.campbell.points[p];
+    BOOST_REQUIRE_EQUAL(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
+    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
+      BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i << ": rfem " << a.frequencies_rad_s[i] << ", exact "
+                              << b.frequencies_rad_s[i]);
+      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) / (std::abs(b.frequencies_rad_s[i]) + b.spin_rad_s) <=
+                 rf_bound);
+    }
+  }
+  BOOST_REQUIRE(!ex.campbell.forward_criticals.empty());
+  BOOST_TEST(rel(rf.campbell.forward_criticals[0], ex.campbell.forward_criticals[0]) <= rf_bound);
 }
 
 BOOST_AUTO_TEST_CASE(a_cone_cantilever_against_its_bessel_solution) {
@@ -437,4 +497,87 @@ BOOST_AUTO_TEST_CASE(a_cone_cantilever_against_its_bessel_solution) {
       }
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(exact_solves_tapered_pieces_to_their_closed_forms) {
+  // The exponential beam (its frequency equation), the cone and the wedge cantilevers (their Bessel
+  // solutions): every mode, in order, none missed (the count is exact on the comparison pieces).
+  const int k = 6;
+  const std::string clamped = "x0 = \"clamped\"\nxL = \"clamped\"", cantilever = "x0 = \"clamped\"\nxL = \"free\"";
+  expect_exact(parse_scene(beam("euler-bernoulli", kSdll10, clamped, "", k), "sdll10.toml"), sdll10_frequencies(k));
+  expect_exact(parse_scene(beam("euler-bernoulli", piece(kL, "{ shape = \"circle\", diameter = [0.05, 0.03] }"),
+                                cantilever, "", k),
+                           "cone.toml"),
+               cone_frequencies(k));
+  const std::vector<ld> wedge = wedge_frequencies(k);
+  BOOST_REQUIRE_EQUAL(wedge.size(), static_cast<std::size_t>(k));
+  expect_exact(parse_scene(beam("euler-bernoulli",
+                                piece(kL, "{ shape = \"rectangle\", width = 0.03, height = [0.05, 0.03] }"), cantilever,
+                                "", k),
+                           "wedge.toml"),
+               wedge);
+}
+
+BOOST_AUTO_TEST_CASE(the_wedge_against_rfem_and_dtfm) {
+  // The wedge's Bessel solution as a check on the two discrete models too (within their estimates).
+  const int k = 4;
+  const std::vector<ld> ref = wedge_frequencies(k);
+  const Scene s = parse_scene(beam("euler-bernoulli", piece(kL, "{ shape = \"rectangle\", width = 0.03, height = [0.05, 0.03] }"),
+                                   "x0 = \"clamped\"\nxL = \"free\"", "", k) +
+                                  "tolerance = 1e-4\n",
+                              "wedge.toml");
+  for (const std::string name : {"rfem", "dtfm"}) {
+    const Result d = registry().get(name).solve_default(s, Options{});
+    BOOST_TEST_CONTEXT(name << " " << d.summary.mesh << ": " << d.summary.message) {
+      BOOST_REQUIRE(d.summary.status == Status::Success);
+      for (int i = 0; i < k; ++i)
+        BOOST_TEST(rel(d.frequencies_rad_s[i], static_cast<double>(ref[i])) <= d.summary.error_estimate.frequencies);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(exact_axial_cone_and_free_tapered_beam) {
+  // A cone as a bar, clamped at its wide end: (A u')' + k^2 A u = 0 with A ~ xi^2 (xi from the apex)
+  // has u = sin(k (xi - xi_c)) / xi; a free narrow end (u' = 0 at xi_t = xi_c - L) gives
+  // sin(k L) + k xi_t cos(k L) = 0, k = omega sqrt(rho / E): roots by bisection in long double.
+  const ld a = (kD0 - kD1) / kL, xt = kD1 / a;
+  const auto f = [&](ld k) { return std::sin(k * kL) + k * xt * std::cos(k * kL); };
+  std::vector<ld> axial;
+  for (ld k = 0.01L; axial.size() < 3; k += 0.01L) {
+    if ((f(k) < 0) == (f(k + 0.01L) < 0)) continue;
+    ld lo = k, hi = k + 0.01L;
+    for (int i = 0; i < 200 && hi - lo > 1e-18L * hi; ++i) ((f(lo) < 0) == (f((lo + hi) / 2) < 0) ? lo : hi) = (lo + hi) / 2;
+    axial.push_back(lo * std::sqrt(static_cast<ld>(E) / rho));
+  }
+  std::string planar = beam("euler-bernoulli", piece(kL, "{ shape = \"circle\", diameter = [0.05, 0.03] }"),
+                            "x0 = \"clamped\"\nxL = \"free\"", "", 10);  // axial: modes 4, 7 and 10
+  planar.replace(planar.find("physics = \"bending\""), 19, "physics = \"planar\"");
+  const Result r = registry().get("exact").solve_default(parse_scene(planar, "cone_bar.toml"), Options{});
+  BOOST_REQUIRE_MESSAGE(r.summary.status == Status::Success, r.summary.message);
+  std::vector<double> got;
+  for (std::size_t i = 0; i < r.frequencies_rad_s.size(); ++i)
+    if (r.mode_families[i] == ModeFamily::Axial) got.push_back(r.frequencies_rad_s[i]);
+  BOOST_REQUIRE_GE(got.size(), axial.size());
+  for (std::size_t i = 0; i < axial.size(); ++i) {
+    BOOST_TEST_INFO("axial mode " << i + 1 << ": " << got[i] << " against " << static_cast<double>(axial[i]));
+    BOOST_TEST(rel(got[i], static_cast<double>(axial[i])) < 1e-11);
+  }
+  // The cone free at both ends: two rigid modes, then the elastic ones as rfem's within its estimate;
+  // the rigid translation's modal mass is the cone's mass (exact integrates rho A over the taper).
+  std::string free_free = beam("euler-bernoulli", piece(kL, "{ shape = \"circle\", diameter = [0.05, 0.03] }"),
+                               "x0 = \"free\"\nxL = \"free\"", "", 4) + "shapes = true\ntolerance = 1e-5\n";
+  const Scene s = parse_scene(free_free, "cone_free.toml");
+  const Result e = registry().get("exact").solve_default(s, Options{});
+  const Result rf = registry().get("rfem").solve_default(s, Options{});
+  BOOST_REQUIRE_MESSAGE(e.summary.status == Status::Success, e.summary.message);
+  BOOST_REQUIRE_MESSAGE(rf.summary.status == Status::Success, rf.summary.message);
+  BOOST_TEST(e.frequencies_rad_s[0] == 0.0);
+  BOOST_TEST(e.frequencies_rad_s[1] == 0.0);
+  for (std::size_t i = 2; i < 4; ++i) BOOST_TEST(rel(rf.frequencies_rad_s[i], e.frequencies_rad_s[i]) <= rf.summary.error_estimate.frequencies);
+  const double mass = static_cast<double>(rho * kPiL / 4 * kL * (kD0 * kD0 + kD0 * kD1 + kD1 * kD1) / 3);
+  BOOST_TEST(rel(e.mode_shapes.total_mass, mass) < 1e-13);
+  // The rigid modes carry the whole mass in z (a translation and a rotation about the centre of
+  // mass, which exact finds by integrating rho A and rho A x over the taper).
+  BOOST_REQUIRE_GE(e.mode_shapes.effective_mass.size(), 2u);
+  BOOST_TEST(rel(e.mode_shapes.effective_mass[0][2] + e.mode_shapes.effective_mass[1][2], mass) < 1e-12);
 }

@@ -168,7 +168,26 @@ struct Segment {
   Segment uniform_at(double x) const;
   /// The shear coefficient at x: the material's, or Cowper's for the local bore (kappa_follows_shape).
   double kappa_at(double x) const;
+  /// Bounds over [x0, x1] of this piece (SectionBounds); a uniform piece's are its section.
+  struct Bounds;
+  Bounds bounds_on(double x0, double x1) const;
   double length() const { return x_to - x_from; }
+  /// The piece's mass, kg: rho A l, or a tapered piece's integral of rho A(x) (8-point
+  /// Gauss-Legendre on 16 parts: its area, a polynomial of degree <= 4 or an exponential, to rounding).
+  double mass() const;
+};
+
+/// Over [x0, x1] of a piece: a section no stiffer than the piece anywhere there (`weakest`: each
+/// property at most its lowest value there) and one no lighter (`heaviest`: each at least its
+/// highest), and a shear coefficient no higher (`kappa_lo`). Each dimension varies monotonically
+/// (linear or exponential), so its extremes lie at x0 and x1; every property grows with the outer
+/// dimensions and falls with a tube's bore, and Cowper's tube coefficient falls as the bore ratio
+/// grows (m^2 / (1 + m^2)^2 rises on [0, 1]). `weakest_exists` is false where the widest bore
+/// reaches the narrowest outside over the stretch (the weakest section is then no section: cut it).
+struct Segment::Bounds {
+  Section weakest{}, heaviest{};
+  double kappa_lo = 0;
+  bool weakest_exists = true;
 };
 
 /// A static point load. Beam: at x. Plate: at (x, y); only Fz is meaningful.

@@ -13,6 +13,7 @@
 //
 // Sources: Timoshenko & Gere; Wittrick & Williams (1971).
 
+#include <functional>
 #include <vector>
 
 #include "modalbench/exact/types.hpp"
@@ -20,9 +21,23 @@
 
 namespace modalbench::exact {
 
-/// A piece of a stepped beam in one plane, from x_from (m) on: its properties (BeamBending's).
+/// A beam's properties in one plane at a point (BeamBending's units).
+struct BendingProps {
+  double EI = 0, kGA = 0, rhoA = 0, rhoI = 0;
+};
+/// How a tapered piece's properties vary along it (empty: a uniform piece): `at(x)` at x (m), and
+/// `bound(x0, x1)` a uniform comparison over [x0, x1] with EI and kGA at most their lowest there and
+/// rhoA and rhoI at least their highest (numerics' LineVariation: it keeps the count exact).
+struct BendingVariation {
+  std::function<BendingProps(double x)> at;
+  std::function<BendingProps(double x0, double x1)> bound;
+  explicit operator bool() const { return static_cast<bool>(at); }
+};
+/// A piece of a stepped beam in one plane, from x_from (m) on: its properties (BeamBending's; a
+/// tapered piece's at x_from, and `varies`).
 struct BendingStep {
   double x_from = 0, EI = 0, kGA = 0, rhoA = 0, rhoI = 0;
+  BendingVariation varies = {};
 };
 /// Bending in one plane. Euler-Bernoulli: kGA = inf and rhoI = 0. A stepped beam: these are the
 /// first piece's properties, and `steps` the pieces after it (ascending x_from in (0, L)).
@@ -33,18 +48,36 @@ struct BeamBending {
   double rhoI = 0;  ///< kg*m (rotary inertia per length; 0 for Euler-Bernoulli)
   double L = 0;     ///< m
   std::vector<BendingStep> steps = {};
-  /// The properties of the piece holding x (as a one-piece BeamBending of length L).
+  /// A tapered first piece (its properties above are those at x = 0).
+  BendingVariation varies = {};
+  /// The properties at x (as a uniform one-piece BeamBending of length L): the piece holding x's,
+  /// a tapered piece's at x itself.
   BeamBending at(double x) const;
+  /// Whether a piece tapers.
+  bool tapered() const;
+};
+struct BarProps {
+  double S = 0, mu = 0;
+};
+/// A tapered bar piece (BendingVariation's meaning: S at most its lowest, mu at least its highest).
+struct BarVariation {
+  std::function<BarProps(double x)> at;
+  std::function<BarProps(double x0, double x1)> bound;
+  explicit operator bool() const { return static_cast<bool>(at); }
 };
 /// A piece of a stepped bar from x_from (m) on.
 struct BarStep {
   double x_from = 0, S = 0, mu = 0;
+  BarVariation varies = {};
 };
-/// A bar: axial (S = EA, mu = rhoA) or torsion (S = GJ, mu = rho Ip); stepped as BeamBending.
+/// A bar: axial (S = EA, mu = rhoA) or torsion (S = GJ, mu = rho Ip); stepped and tapered as
+/// BeamBending.
 struct Bar {
   double S = 0, mu = 0, L = 0;
   std::vector<BarStep> steps = {};
+  BarVariation varies = {};
   Bar at(double x) const;
+  bool tapered() const;
 };
 
 /// A support or a mass between (or at) the ends of one line, at x (m): springs to ground
@@ -71,6 +104,9 @@ struct LineLoad {
 /// linearly from q_from to q_to.
 struct DistributedLineLoad {
   double x_from = 0, x_to = 0, q_from = 0, q_to = 0;
+  /// A smooth factor on that intensity at x (m; a tapered piece's weight: its area over its first
+  /// area). Empty: 1.
+  std::function<double(double)> factor = {};
 };
 using DistributedLineLoads = std::vector<DistributedLineLoad>;
 /// What a support of one line exerts on it under the static loads: force (N; a torsion bar: N*m)

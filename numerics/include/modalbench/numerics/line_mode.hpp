@@ -35,6 +35,8 @@ class LineMode {
 
  private:
   int m_ = 0;
+  LineSystem sys_;  ///< the line (a varying piece's transfer matrices come from it)
+  double lambda_ = 0;
   std::vector<Eigen::MatrixXd> A_;  ///< per segment (a stepped line's pieces differ)
   std::vector<double> xi_;
   std::vector<Eigen::VectorXd> y_;  ///< state at the left end of each segment (and the last node)

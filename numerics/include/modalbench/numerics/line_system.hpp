@@ -43,12 +43,31 @@ struct LineAttachment {
   }
 };
 
+/// A piece whose coefficients vary along it (a tapered member); empty: a uniform piece.
+///
+/// `state` gives A(lambda, xi) at each xi of the piece; the piece's segments take their transfer
+/// matrices from it by the sixth-order Magnus integrator (varying_transfer.hpp), steps doubled
+/// until two agree to 1e-15 (an estimate above 1e-12 throws std::runtime_error). `wavenumber_over`
+/// bounds the wavenumbers, over [xi0, xi1], of a uniform comparison piece nowhere stiffer and
+/// nowhere heavier than this one there (each stiffness at its lowest, each inertia at its highest):
+/// by the min-max principle its clamped-clamped frequencies are no higher than the varying
+/// segment's, so a segment with |p| h <= 1 by this bound has none below omega, as a uniform one,
+/// and the Wittrick-Williams count stays exact. The piece's state_matrix (below) must give A at its
+/// start, and its kinematic block A_dd(0) (with A_fd(0) = 0) must hold along it (a beam's does).
+struct LineVariation {
+  std::function<Eigen::MatrixXd(double lambda, double xi)> state;
+  std::function<double(double lambda, double xi0, double xi1)> wavenumber_over;
+  explicit operator bool() const { return static_cast<bool>(state); }
+};
+
 /// A piece of a stepped line from xi_from on (to the next piece or 1): its own state matrix and
-/// wavenumber bound (LineSystem's meaning). Its start is a node.
+/// wavenumber bound (LineSystem's meaning), and its variation if its coefficients vary. Its start
+/// is a node.
 struct LinePiece {
   double xi_from = 0;
   std::function<Eigen::MatrixXd(double lambda)> state_matrix;
   std::function<double(double lambda)> max_wavenumber;
+  LineVariation variation = {};
 };
 
 /// A line field problem in dimensionless form on [0, 1].
@@ -67,6 +86,10 @@ struct LineSystem {
   Eigen::MatrixXd state_matrix_at(double lambda, double xi) const;
   /// The wavenumber bound of the piece holding xi.
   double max_wavenumber_at(double lambda, double xi) const;
+  /// The first piece's variation (empty: uniform).
+  LineVariation variation = {};
+  /// The variation of the piece holding xi (empty: a uniform piece).
+  const LineVariation& variation_at(double xi) const;
   std::vector<double> left_spring, right_spring;  ///< per DOF, dimensionless, [0, inf]
   std::vector<double> nodes_at;  ///< interior positions in (0, 1) that must be nodes (loads, probes)
   /// Supports and masses between (or at) the ends; each is a node. A line with attachments is
@@ -77,6 +100,12 @@ struct LineSystem {
   /// polynomial allows down to 1e-250 of the scale; without it, the count runs on K(lambda) itself.
   bool polynomial_in_lambda = true;
 };
+
+/// The transfer matrix y(x1) = T y(x0) over [x0, x1] inside one piece (a segment or part of one):
+/// exp(A (x1 - x0)) in a uniform piece, the Magnus product in a varying one (LineVariation).
+Eigen::MatrixXd line_transfer(const LineSystem& sys, double lambda, double x0, double x1);
+/// The dynamic stiffness of the segment [x0, x1] inside one piece (segment_dynamic_stiffness.hpp).
+Eigen::MatrixXd line_segment_stiffness(const LineSystem& sys, double lambda, double x0, double x1);
 
 /// The assembled K(lambda) with its node positions.
 struct AssembledLine {

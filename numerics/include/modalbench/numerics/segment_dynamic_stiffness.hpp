@@ -26,6 +26,10 @@ namespace modalbench {
 Eigen::MatrixXd segment_dynamic_stiffness(const Eigen::MatrixXd& A, double h, double* asymmetry = nullptr,
                                           double* log_abs_det_tdf = nullptr);
 
+/// K_seg from the segment's transfer matrix T = [[Tdd, Tdf], [Tfd, Tff]] (any segment, uniform or
+/// not: a varying one's from varying_transfer.hpp), symmetrised; `asymmetry` as above.
+Eigen::MatrixXd segment_stiffness_of_transfer(const Eigen::MatrixXd& T, double* asymmetry = nullptr);
+
 /// K_seg(lambda) together with its divided difference dK = (K_seg(lambda) - K_seg(0)) / lambda,
 /// both to working precision relative to their own size: dK is not the difference of two
 /// computed K (which loses every digit of lambda dK below the rounding of K(0)) but follows from
@@ -40,6 +44,10 @@ struct SegmentDivided {
 };
 SegmentDivided segment_dynamic_stiffness_divided(const Eigen::MatrixXd& A_lambda, const Eigen::MatrixXd& A_0,
                                                  double lambda, double h);
+/// The same from the transfer matrices T(lambda), T(0) and their divided difference
+/// dT = (T(lambda) - T(0)) / lambda (for a varying segment: the upper right block of the transfer
+/// of the block field [[A(lambda, x), dA(x)], [0, A(0, x)]], Van Loan's construction along x).
+SegmentDivided segment_divided_from_transfers(const Eigen::MatrixXd& T1, const Eigen::MatrixXd& T0, const Eigen::MatrixXd& dT);
 
 /// The reflection of a uniform segment end for end (x -> h - x): signs p_i = +-1, one per field,
 /// with R A R = -A for R = diag(P, -P), P = diag(p), i.e. P A11 P = -A11, P A12 P = A12,
