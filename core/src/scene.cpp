@@ -182,16 +182,7 @@ Segment::Bounds Segment::bounds_on(double x0, double x1) const {
 
 double Segment::mass() const {
   if (!end) return material.rho * properties().A * length();
-  constexpr int kParts = 16;
-  const double h = length() / kParts;
-  double sum = 0;
-  for (int k = 0; k < kParts; ++k) {
-    const double mid = x_from + (k + 0.5) * h;
-    for (std::size_t g = 0; g < gauss_legendre8::node.size(); ++g)
-      for (const double sign : {-1.0, 1.0})
-        sum += gauss_legendre8::weight[g] * 0.5 * h * properties_at(mid + sign * 0.5 * h * gauss_legendre8::node[g]).A;
-  }
-  return material.rho * sum;
+  return material.rho * gauss_legendre8::integrate([this](double x) { return properties_at(x).A; }, x_from, x_to, 16);
 }
 
 bool Scene::has_tapered_pieces() const {

@@ -55,14 +55,7 @@ double over_pieces(const BeamBending& beam, const std::function<double(double, d
       sum += f(ends[i], ends[i + 1], beam.at(ends[i]));
       continue;
     }
-    constexpr int kParts = 16;
-    const double h = (ends[i + 1] - ends[i]) / kParts;
-    for (int k = 0; k < kParts; ++k)
-      for (std::size_t g = 0; g < gauss_legendre8::node.size(); ++g)
-        for (const double sign : {-1.0, 1.0}) {
-          const double x = ends[i] + (k + 0.5) * h + sign * 0.5 * h * gauss_legendre8::node[g];
-          sum += 0.5 * h * gauss_legendre8::weight[g] * density(x, beam.at(x));
-        }
+    sum += gauss_legendre8::integrate([&](double x) { return density(x, beam.at(x)); }, ends[i], ends[i + 1], 16);
   }
   return sum;
 }

@@ -48,10 +48,9 @@ void set_whirl_piece(const BeamBending& ref, const BeamBending& own, double rhoI
 /// A tapered piece's whirl line variation: set_whirl_piece's state matrix with the properties at
 /// each xi, and the wavenumber bound of a comparison over [xi0, xi1] (EI and kGA lowest, rhoA highest,
 /// the rotary term at its largest size: rhoI lambda + rhoIp spin sqrt(lambda) with both highest).
-LineVariation whirl_variation(const BeamBending& ref, const Segment& piece, const BeamBending& beam, bool eb,
-                              const Whirling& w) {
-  const double L = ref.L;
-  const BeamBending r{ref.EI, ref.kGA, ref.rhoA, ref.rhoI, L};
+LineVariation whirl_variation(const BeamBending& beam, const Segment& piece, bool eb, const Whirling& w) {
+  const double L = beam.L;
+  const BeamBending r{beam.EI, beam.kGA, beam.rhoA, beam.rhoI, L};  // the units (the first piece's)
   const auto rho_ip = [eb, rho = piece.material.rho](const Section& sec) { return eb ? 0.0 : rho * sec.Ip; };
   return {[r, piece, beam, rho_ip, w, L](double lambda, double xi) {
             std::function<Eigen::MatrixXd(double)> A;
@@ -59,7 +58,7 @@ LineVariation whirl_variation(const BeamBending& ref, const Segment& piece, cons
             set_whirl_piece(r, beam.at(xi * L), rho_ip(piece.properties_at(xi * L)), w, A, p);
             return A(lambda);
           },
-          [r, piece, beam, rho_ip, w, L, eb](double lambda, double xi0, double xi1) {
+          [piece, rho_ip, w, L, eb](double lambda, double xi0, double xi1) {
             const Segment::Bounds b = piece.bounds_on(xi0 * L, xi1 * L);
             if (!b.weakest_exists) return std::numeric_limits<double>::quiet_NaN();
             const Material& m = piece.material;
@@ -87,7 +86,7 @@ BendingLine whirl_line(const Scene& s, const Whirling& w) {
     const BeamBending own = b.at(pieces[i].x_from);
     if (i == 0) set_whirl_piece(b, own, rhoIp, w, line.sys.state_matrix, line.sys.max_wavenumber);
     else set_whirl_piece(b, own, rhoIp, w, line.sys.steps[i - 1].state_matrix, line.sys.steps[i - 1].max_wavenumber);
-    if (pieces[i].tapered()) (i == 0 ? line.sys.variation : line.sys.steps[i - 1].variation) = whirl_variation(b, pieces[i], b, eb, w);
+    if (pieces[i].tapered()) (i == 0 ? line.sys.variation : line.sys.steps[i - 1].variation) = whirl_variation(b, pieces[i], eb, w);
   }
   // line_points puts the point supports first, then the masses in order (beam_attachments.cpp).
   const double kr = b.L / b.EI;

@@ -189,6 +189,25 @@ void expect_exact(const Scene& s, const std::vector<ld>& ref) {
   }
 }
 
+/// Every Campbell point's roots of `got` within `bound` of `ref`'s (relative to |ref| + spin), and
+/// its first forward critical speed.
+void expect_campbell_within(const Result& got, const Result& ref, double bound) {
+  BOOST_REQUIRE_EQUAL(got.campbell.points.size(), ref.campbell.points.size());
+  for (std::size_t p = 0; p < ref.campbell.points.size(); ++p) {
+    const auto &a = got.campbell.points[p], &b = ref.campbell.points[p];
+    BOOST_REQUIRE_EQUAL(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
+    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
+      BOOST_TEST_INFO("spin " << b.spin_rad_s << " root " << i << ": " << a.frequencies_rad_s[i] << " against "
+                              << b.frequencies_rad_s[i]);
+      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) / (std::abs(b.frequencies_rad_s[i]) + b.spin_rad_s) <=
+                 bound);
+    }
+  }
+  BOOST_REQUIRE(!got.campbell.forward_criticals.empty());
+  BOOST_REQUIRE(!ref.campbell.forward_criticals.empty());
+  BOOST_TEST(rel(got.campbell.forward_criticals[0], ref.campbell.forward_criticals[0]) <= bound);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(sections_vary_by_their_profile) {
@@ -437,36 +456,11 @@ BOOST_AUTO_TEST_CASE(a_conical_shaft_whirls_alike_on_rfem_dtfm_and_exact) {
   BOOST_REQUIRE_MESSAGE(dt.ok(), dt.summary.message);
   const double bound = rf.summary.error_estimate.campbell + dt.summary.error_estimate.campbell;
   BOOST_TEST(bound < 1e-3);
-  BOOST_REQUIRE_EQUAL(rf.campbell.points.size(), dt.campbell.points.size());
-  for (std::size_t p = 0; p < rf.campbell.points.size(); ++p) {
-    const auto &a = rf.campbell.points[p], &b = dt.campbell.points[p];
-    BOOST_REQUIRE_EQUAL(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
-    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
-      BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i << ": rfem " << a.frequencies_rad_s[i] << ", dtfm "
-                              << b.frequencies_rad_s[i]);
-      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) / (std::abs(a.frequencies_rad_s[i]) + a.spin_rad_s) <=
-                 bound);
-    }
-  }
-  BOOST_REQUIRE(!rf.campbell.forward_criticals.empty());
-  BOOST_TEST(rel(dt.campbell.forward_criticals[0], rf.campbell.forward_criticals[0]) <= bound);
+  expect_campbell_within(dt, rf, bound);
   // exact (the whirl lines' Magnus transfer matrices): rfem within its own estimate of it.
   const Result ex = registry().get("exact").solve_default(s, Options{});
   BOOST_REQUIRE_MESSAGE(ex.ok(), ex.summary.message);
-  const double rf_bound = rf.summary.error_estimate.campbell;
-  BOOST_REQUIRE_EQUAL(rf.campbell.points.size(), ex.campbell.points.size());
-  for (std::size_t p = 0; p < ex.campbell.points.size(); ++p) {
-    const auto &a = rf.campbell.points[p], &b = ex.campbell.points[p];
-    BOOST_REQUIRE_EQUAL(a.frequencies_rad_s.size(), b.frequencies_rad_s.size());
-    for (std::size_t i = 0; i < a.frequencies_rad_s.size(); ++i) {
-      BOOST_TEST_INFO("spin " << a.spin_rad_s << " root " << i << ": rfem " << a.frequencies_rad_s[i] << ", exact "
-                              << b.frequencies_rad_s[i]);
-      BOOST_TEST(std::abs(a.frequencies_rad_s[i] - b.frequencies_rad_s[i]) / (std::abs(b.frequencies_rad_s[i]) + b.spin_rad_s) <=
-                 rf_bound);
-    }
-  }
-  BOOST_REQUIRE(!ex.campbell.forward_criticals.empty());
-  BOOST_TEST(rel(rf.campbell.forward_criticals[0], ex.campbell.forward_criticals[0]) <= rf_bound);
+  expect_campbell_within(rf, ex, rf.summary.error_estimate.campbell);
 }
 
 BOOST_AUTO_TEST_CASE(a_cone_cantilever_against_its_bessel_solution) {
