@@ -13,7 +13,7 @@
 
 #include "modalbench/numerics/balancing.hpp"
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
-#include "modalbench/numerics/varying_transfer.hpp"
+#include "line_variation.hpp"
 
 namespace modalbench {
 
@@ -47,77 +47,12 @@ const LineVariation& LineSystem::variation_at(double xi) const {
 
 namespace {
 
-/// Magnus steps doubled until two agree to this (estimated relative error of a transfer matrix)...
-constexpr double kMagnusTolerance = 1e-15;
-/// ... and a transfer matrix whose estimate stays above this after 4096 steps is refused.
-constexpr double kMagnusRefused = 1e-12;
-/// A gap inside a varying piece has at least this many segments (each a Magnus product), so that
-/// a distributed load's Gauss points per segment integrate its smooth fixed-end reactions to
-/// rounding at lambda = 0, where the wavenumbers would allow one segment.
-constexpr int kMinVaryingSegments = 8;
-
-VaryingTransfer magnus(const std::function<Eigen::MatrixXd(double)>& A, double x0, double x1, const Eigen::VectorXd& d = {}) {
-  // Neighbouring segments of a piece need about the same steps: the first (coarse) product takes a
-  // quarter of the last count, so a milder segment is accepted at half of it and a like one after
-  // one more doubling (the steps, not the tolerance, depend on what came before).
-  thread_local int last_steps = 4;
-  VaryingTransfer t = varying_transfer(A, x0, x1, kMagnusTolerance, d, std::max(1, last_steps / 4));
-  last_steps = t.steps;
-  if (!(t.error <= kMagnusRefused))
-    throw std::runtime_error("varying piece: the Magnus transfer matrix over [" + std::to_string(x0) + ", " +
-                             std::to_string(x1) + "] is accurate only to " + std::to_string(t.error) + " after " +
-                             std::to_string(t.steps) + " steps");
-  return t;
-}
-
 /// exp(A t), balanced like the segment matrices.
 Eigen::MatrixXd transfer(const Eigen::MatrixXd& A, double t) {
   if (t == 0.0) return Eigen::MatrixXd::Identity(A.rows(), A.cols());
   Eigen::MatrixXd B = A * t;
   const Eigen::VectorXd s = balance_in_place(B, 20);
   return s.asDiagonal() * Eigen::MatrixXd(B.exp()) * s.cwiseInverse().asDiagonal();
-}
-
-/// K(lambda) of the varying segment [x0, x1] with its divided difference (SegmentDivided), from the
-/// Magnus transfer of Van Loan's block field, scaled once by A(0)'s balancing as the uniform one.
-SegmentDivided varying_divided(const LineVariation& v, double lambda, double x0, double x1) {
-  if (lambda == 0.0) {
-    const VaryingTransfer t = magnus([&](double x) { return v.state(0.0, x); }, x0, x1);
-    return {segment_stiffness_of_transfer(t.T), Eigen::MatrixXd::Zero(t.T.rows(), t.T.cols())};
-  }
-  Eigen::MatrixXd B0 = v.state(0.0, 0.5 * (x0 + x1)) * (x1 - x0);
-  const Eigen::Index n2 = B0.rows();
-  const Eigen::VectorXd s0 = balance_in_place(B0, 20);
-  Eigen::VectorXd scale(2 * n2);
-  scale << s0, s0;
-  const auto block = [&](double x) {
-    const Eigen::MatrixXd A1 = v.state(lambda, x), A0 = v.state(0.0, x);
-    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(2 * n2, 2 * n2);
-    X.topLeftCorner(n2, n2) = A1;
-    X.topRightCorner(n2, n2) = (A1 - A0) / lambda;
-    X.bottomRightCorner(n2, n2) = A0;
-    return X;
-  };
-  const Eigen::MatrixXd E = magnus(block, x0, x1, scale).T;
-  return segment_divided_from_transfers(E.topLeftCorner(n2, n2), E.bottomRightCorner(n2, n2), E.topRightCorner(n2, n2));
-}
-
-/// Cuts the gap [a, b] of a varying piece into segments each of which has |p| h <= 1 by its own
-/// comparison bound (so none has a clamped frequency below lambda), at least `min_parts` of them;
-/// appends the nodes after a (b last).
-void cut_varying(const LineVariation& v, double lambda, double a, double b, int min_parts, std::vector<double>& xi,
-                 int depth = 0) {
-  const double len = b - a, p = v.wavenumber_over(lambda, a, b);
-  const bool bounded = std::isfinite(p) && p >= 0;
-  if (bounded && p * len <= 1.0 && min_parts <= 1) {
-    xi.push_back(b);
-    return;
-  }
-  if (depth > 40) throw std::runtime_error("LineSystem: a varying piece's wavenumber bound does not fall as it is cut");
-  const double want = bounded ? std::ceil(len * p) : 2.0;
-  if (want > 1e7) throw std::runtime_error("LineSystem: more than 1e7 segments needed at this frequency");
-  const int n = std::max({2, min_parts, static_cast<int>(want)});
-  for (int j = 1; j <= n; ++j) cut_varying(v, lambda, a + len * (j - 1) / n, j == n ? b : a + len * j / n, 1, xi, depth + 1);
 }
 
 /// The state matrices of the line's segments at lambda, one per distinct piece (computed once).
@@ -167,7 +102,7 @@ std::vector<double> line_nodes(const LineSystem& sys, double lambda) {
   for (std::size_t g = 0; g + 1 < breaks.size(); ++g) {
     const double len = breaks[g + 1] - breaks[g];
     if (const LineVariation& v = sys.variation_at(0.5 * (breaks[g] + breaks[g + 1]))) {
-      cut_varying(v, lambda, breaks[g], breaks[g + 1], kMinVaryingSegments, xi);
+      detail::cut_varying(v, lambda, breaks[g], breaks[g + 1], detail::kMinVaryingSegments, xi);
       continue;
     }
     const double p = std::max(sys.max_wavenumber_at(lambda, 0.5 * (breaks[g] + breaks[g + 1])), 1e-12);
@@ -338,7 +273,7 @@ Split assemble_split(const LineSystem& sys, const Rigid& R, const std::vector<do
     const double h = xi[i + 1] - xi[i], mid = 0.5 * (xi[i] + xi[i + 1]);
     const int piece = sys.piece_at(mid);
     if (const LineVariation& v = sys.variation_at(mid)) {
-      seg = varying_divided(v, lambda, xi[i], xi[i + 1]);
+      seg = detail::varying_divided(v, lambda, xi[i], xi[i + 1]);
       last_piece = -2;
     } else if (!same_length(h, last_h) || piece != last_piece) {
       seg = segment_dynamic_stiffness_divided(A1.at(mid), A0.at(mid), lambda, h);
@@ -413,7 +348,7 @@ int split_count(const Split& sp) {
 
 Eigen::MatrixXd line_transfer(const LineSystem& sys, double lambda, double x0, double x1) {
   if (const LineVariation& v = sys.variation_at(0.5 * (x0 + x1)))
-    return magnus([&](double x) { return v.state(lambda, x); }, x0, x1).T;
+    return detail::magnus_transfer([&](double x) { return v.state(lambda, x); }, x0, x1).T;
   return transfer(sys.state_matrix_at(lambda, 0.5 * (x0 + x1)), x1 - x0);
 }
 
@@ -521,7 +456,7 @@ int count_below(const LineSystem& sys, double lambda) {
     if (const LineVariation& v = sys.variation_at(mid)) {
       // A varying piece: segments that provably have no clamped frequency below lambda (J0 = 0).
       std::vector<double> cuts = {a};
-      cut_varying(v, lambda, a, b, 1, cuts);
+      detail::cut_varying(v, lambda, a, b, 1, cuts);
       for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
         LongSegment seg;
         seg.K = line_segment_stiffness(sys, lambda, cuts[j], cuts[j + 1]);
