@@ -151,7 +151,8 @@ std::string forces_line(const mb::Scene& scene, const mb::Deflection& d) {
   const auto& f = d.forces;
   if (scene.is_plate())
     return fmt::format("\n      moments mx = {:.6e}, my = {:.6e}, mxy = {:.6e} N*m/m", f.mx, f.my, f.mxy);
-  std::string out = fmt::format("\n      My = {:.6e} N*m (sagging +), Qz = dMy/dx = {:.6e} N", f.My, f.Qz);
+  std::string out = fmt::format("\n      {}My = {:.6e} N*m (sagging +), Qz = dMy/dx = {:.6e} N",
+                                scene.is_frame() ? "member axes: " : "", f.My, f.Qz);
   if (mb::carries_axial(scene.physics)) out += fmt::format(", N = {:.6e} N", f.N);
   if (mb::carries_xy(scene.physics)) out += fmt::format(", Mz = {:.6e} N*m, Qy = {:.6e} N", f.Mz, f.Qy);
   if (mb::carries_torsion(scene.physics)) out += fmt::format(", T = {:.6e} N*m", f.T);
@@ -163,6 +164,13 @@ std::string probe_line(const mb::Scene& scene, const mb::Deflection& d) {
   if (scene.is_plate())
     return fmt::format("({:g}, {:g}) m: w = {:.8e} m, theta_x = {:.8e} rad, theta_y = {:.8e} rad", d.position[0],
                        d.position[1], d.w, d.theta_x, d.theta_y);
+  if (scene.is_frame()) {
+    std::string out = fmt::format("{} ({:g}, {:g}, {:g}) m: u = {:.8e} m, w = {:.8e} m, theta_y = {:.8e} rad", d.probe,
+                                  d.point[0], d.point[1], d.point[2], d.u, d.w, d.theta_y);
+    if (mb::carries_xy(scene.physics))
+      out += fmt::format(", v = {:.8e} m, theta_x = {:.8e} rad, theta_z = {:.8e} rad", d.v, d.theta_x, d.theta_z);
+    return out;
+  }
   std::string out = fmt::format("x = {:g} m: w = {:.8e} m, theta_y = {:.8e} rad", d.position[0], d.w, d.theta_y);
   if (mb::carries_axial(scene.physics)) out += fmt::format(", u = {:.8e} m", d.u);
   if (mb::carries_xy(scene.physics)) out += fmt::format(", v = {:.8e} m, theta_z = {:.8e} rad", d.v, d.theta_z);
@@ -216,8 +224,9 @@ void print_text(const mb::Scene& scene, const std::string& backend, const mb::Di
   for (const auto& rc : r.reactions)
     std::cout << fmt::format("  reaction {} ({}): F = [{:.6e}, {:.6e}, {:.6e}] N, M = [{:.6e}, {:.6e}, {:.6e}] N*m\n",
                              rc.support,
-                             scene.is_beam() ? fmt::format("x = {:g} m", rc.position[0])
-                                             : fmt::format("at ({:g}, {:g}) m", rc.position[0], rc.position[1]),
+                             scene.is_frame()  ? fmt::format("at ({:g}, {:g}, {:g}) m", rc.point[0], rc.point[1], rc.point[2])
+                             : scene.is_beam() ? fmt::format("x = {:g} m", rc.position[0])
+                                               : fmt::format("at ({:g}, {:g}) m", rc.position[0], rc.position[1]),
                              rc.force[0], rc.force[1], rc.force[2], rc.moment[0], rc.moment[1], rc.moment[2]);
   if (!r.frf.empty()) std::cout << fmt::format("  FRF: {} samples\n", r.frf.size());
   const auto& ee = sum.error_estimate;

@@ -105,7 +105,18 @@ nlohmann::json forces_json(const Scene& scene, const InternalForces& f) {
 nlohmann::json deflection_json(const Scene& scene, const Deflection& d) {
   using nlohmann::json;
   json e;
-  if (scene.is_beam()) {
+  if (scene.is_frame()) {
+    e["probe"] = d.probe;
+    e["position"] = json::array({d.point[0], d.point[1], d.point[2]});
+    e["u"] = num(d.u);
+    e["w"] = num(d.w);
+    e["theta_y"] = num(d.theta_y);
+    if (carries_xy(scene.physics)) {
+      e["v"] = num(d.v);
+      e["theta_x"] = num(d.theta_x);
+      e["theta_z"] = num(d.theta_z);
+    }
+  } else if (scene.is_beam()) {
     e["position"] = json::array({d.position[0]});
     e["w"] = num(d.w);
     e["rotation"] = num(d.theta_y);
@@ -135,7 +146,9 @@ nlohmann::json reactions_json(const Scene& scene, const std::vector<Reaction>& r
   json out = json::array();
   for (const Reaction& rc : rs)
     out.push_back({{"support", rc.support},
-                   {"position", scene.is_beam() ? json::array({rc.position[0]}) : json::array({rc.position[0], rc.position[1]})},
+                   {"position", scene.is_frame()  ? json::array({rc.point[0], rc.point[1], rc.point[2]})
+                                : scene.is_beam() ? json::array({rc.position[0]})
+                                                  : json::array({rc.position[0], rc.position[1]})},
                    {"force_N", {num(rc.force[0]), num(rc.force[1]), num(rc.force[2])}},
                    {"moment_N_m", {num(rc.moment[0]), num(rc.moment[1]), num(rc.moment[2])}}});
   return out;

@@ -19,7 +19,14 @@ InputError::InputError(std::string source, std::string key, std::string reason)
       key_(std::move(key)),
       reason_(std::move(reason)) {}
 
-std::string to_string(SceneKind k) { return k == SceneKind::Beam ? "beam" : "plate"; }
+std::string to_string(SceneKind k) {
+  switch (k) {
+    case SceneKind::Beam: return "beam";
+    case SceneKind::Plate: return "plate";
+    case SceneKind::Frame: return "frame";
+  }
+  return "?";
+}
 std::string to_string(Physics p) {
   switch (p) {
     case Physics::Bending: return "bending";

@@ -88,10 +88,15 @@ void read_scene_table(const Reader& r, const toml::table& root, Scene& s) {
   const std::string kind = r.string(sc, "scene", "kind");
   if (kind == "beam") s.kind = SceneKind::Beam;
   else if (kind == "plate") s.kind = SceneKind::Plate;
-  else r.fail("scene.kind", "unknown kind '" + kind + "' (expected beam or plate)");
+  else if (kind == "frame") s.kind = SceneKind::Frame;
+  else r.fail("scene.kind", "unknown kind '" + kind + "' (expected beam, plate or frame)");
 
   const std::string physics = r.string(sc, "scene", "physics");
-  if (s.is_beam()) {
+  if (s.is_frame()) {
+    if (physics == "planar") s.physics = Physics::Planar;
+    else if (physics == "spatial") s.physics = Physics::Spatial;
+    else r.fail("scene.physics", "unknown frame physics '" + physics + "' (expected planar or spatial)");
+  } else if (s.is_beam()) {
     if (physics == "bending") s.physics = Physics::Bending;
     else if (physics == "planar") s.physics = Physics::Planar;
     else if (physics == "spatial") s.physics = Physics::Spatial;
@@ -102,10 +107,11 @@ void read_scene_table(const Reader& r, const toml::table& root, Scene& s) {
     s.physics = Physics::Bending;
   }
   const std::string theory = r.string(sc, "scene", "theory");
-  if (s.is_beam()) {
+  if (!s.is_plate()) {
     if (theory == "euler-bernoulli") s.theory = Theory::EulerBernoulli;
     else if (theory == "timoshenko") s.theory = Theory::Timoshenko;
-    else r.fail("scene.theory", "unknown beam theory '" + theory + "' (expected euler-bernoulli or timoshenko)");
+    else r.fail("scene.theory", "unknown " + to_string(s.kind) + " theory '" + theory +
+                                    "' (expected euler-bernoulli or timoshenko)");
   } else {
     if (theory == "kirchhoff") s.theory = Theory::Kirchhoff;
     else if (theory == "mindlin") s.theory = Theory::Mindlin;
@@ -351,10 +357,19 @@ Scene parse_scene(std::string_view text, const std::string& source) {
                      std::string("TOML syntax: ") + std::string(e.description()));
   }
   r.only_keys(root, "", {"scene", "geometry", "segments", "material", "supports", "masses", "loads", "line_loads", "pressures",
-                         "gravity", "request", "rotor", "backend"});
+                         "gravity", "request", "rotor", "backend", "nodes", "members"});
   Scene s;
   s.source = source;
   read_scene_table(r, root, s);
+  if (s.is_frame()) {
+    read_material(r, root, s);
+    scene_detail::read_frame(r, root, s);
+    read_backend_options(r, root, s);
+    validate(s);
+    return s;
+  }
+  for (const char* k : {"nodes", "members"})
+    if (root.get(k)) r.fail(k, "a " + to_string(s.kind) + " has no [[" + k + "]] (a frame's: [scene] kind = \"frame\")");
   read_geometry(r, root, s);
   read_material(r, root, s);
   read_segment_materials(r, root, s);

@@ -191,6 +191,31 @@ void scene_detail::read_segment_sections(const Reader& r, const toml::table& roo
   }
 }
 
+bool scene_detail::read_material_overrides(const Reader& r, const toml::table& o, const std::string& where, Material& m) {
+  r.only_keys(o, where, {"E", "G", "nu", "rho", "kappa"});
+  if (o.get("E")) m.E = r.positive(o, where, "E");
+  if (o.get("rho")) m.rho = r.positive(o, where, "rho");
+  const auto G = r.opt_number(o, where, "G"), nu = r.opt_number(o, where, "nu");
+  if (nu && !(*nu > -1.0 && *nu < 0.5)) r.fail(where + ".nu", fmt::format("must lie in (-1, 0.5) (got {})", *nu));
+  if (G && !(*G > 0)) r.fail(where + ".G", fmt::format("must be > 0 (got {})", *G));
+  // E, G and nu stay consistent: a piece that changes one of them says which other it keeps.
+  if (G && nu && std::abs(m.E / (2.0 * (1.0 + *nu)) - *G) > 1e-6 * *G)
+    r.fail(where + ".G", fmt::format("inconsistent with E and nu: E/(2(1+nu)) = {} Pa but G = {} Pa",
+                                     m.E / (2.0 * (1.0 + *nu)), *G));
+  if (G) m.G = *G;
+  if (nu) m.nu = *nu;
+  if (G && !nu) m.nu = m.E / (2.0 * m.G) - 1.0;
+  else m.G = m.E / (2.0 * (1.0 + m.nu));  // nu given, or neither (E changed or not: nu kept)
+  if (!(m.nu > -1.0 && m.nu < 0.5))
+    r.fail(where + ".G", fmt::format("implies nu = E/(2G) - 1 = {} outside (-1, 0.5)", m.nu));
+  if (auto k = r.opt_number(o, where, "kappa")) {
+    if (!(*k > 0)) r.fail(where + ".kappa", fmt::format("must be > 0 (got {})", *k));
+    m.kappa = *k;
+    return true;
+  }
+  return false;
+}
+
 void scene_detail::read_segment_materials(const Reader& r, const toml::table& root, Scene& s) {
   if (s.segments.empty()) return;
   const toml::array& arr = segment_array(r, root);
@@ -202,30 +227,9 @@ void scene_detail::read_segment_materials(const Reader& r, const toml::table& ro
     Segment& seg = s.segments[i];
     seg.material = s.material;
     Material& m = seg.material;
-    if (t.get("material")) {
-      const toml::table& o = r.table(t, fmt::format("segments[{}]", i), "material");
-      r.only_keys(o, where, {"E", "G", "nu", "rho", "kappa"});
-      if (o.get("E")) m.E = r.positive(o, where, "E");
-      if (o.get("rho")) m.rho = r.positive(o, where, "rho");
-      const auto G = r.opt_number(o, where, "G"), nu = r.opt_number(o, where, "nu");
-      if (nu && !(*nu > -1.0 && *nu < 0.5)) r.fail(where + ".nu", fmt::format("must lie in (-1, 0.5) (got {})", *nu));
-      if (G && !(*G > 0)) r.fail(where + ".G", fmt::format("must be > 0 (got {})", *G));
-      // E, G and nu stay consistent: a piece that changes one of them says which other it keeps.
-      if (G && nu && std::abs(m.E / (2.0 * (1.0 + *nu)) - *G) > 1e-6 * *G)
-        r.fail(where + ".G", fmt::format("inconsistent with E and nu: E/(2(1+nu)) = {} Pa but G = {} Pa",
-                                         m.E / (2.0 * (1.0 + *nu)), *G));
-      if (G) m.G = *G;
-      if (nu) m.nu = *nu;
-      if (G && !nu) m.nu = m.E / (2.0 * m.G) - 1.0;
-      else m.G = m.E / (2.0 * (1.0 + m.nu));  // nu given, or neither (E changed or not: nu kept)
-      if (!(m.nu > -1.0 && m.nu < 0.5))
-        r.fail(where + ".G", fmt::format("implies nu = E/(2G) - 1 = {} outside (-1, 0.5)", m.nu));
-      if (auto k = r.opt_number(o, where, "kappa")) {
-        if (!(*k > 0)) r.fail(where + ".kappa", fmt::format("must be > 0 (got {})", *k));
-        m.kappa = *k;
-        continue;
-      }
-    }
+    if (t.get("material") &&
+        scene_detail::read_material_overrides(r, r.table(t, fmt::format("segments[{}]", i), "material"), where, m))
+      continue;
     if (kappa_given) continue;
     std::string note;
     m.kappa = default_kappa(r, seg.section, m.nu, s.theory, where + ".kappa", note);

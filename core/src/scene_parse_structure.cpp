@@ -214,7 +214,9 @@ void scene_detail::read_gravity(const Reader& r, const toml::table& root, Scene&
   std::array<double, 3> v{};
   for (int k = 0; k < 3; ++k) v[static_cast<std::size_t>(k)] = r.number_node(*a->get(static_cast<std::size_t>(k)), fmt::format("gravity.g[{}]", k));
   // Components the model has no field for would be dropped silently: refused instead.
-  const bool axial = s.is_beam() && carries_axial(s.physics), lateral = s.is_beam() && carries_xy(s.physics);
+  // A frame's members run in every direction: its nodes carry x and z (and y in space).
+  const bool axial = (s.is_beam() && carries_axial(s.physics)) || s.is_frame();
+  const bool lateral = ((s.is_beam() || s.is_frame()) && carries_xy(s.physics));
   if (v[0] != 0.0 && !axial)
     r.fail("gravity.g[0]", fmt::format("a {} carries no load along x (physics '{}'): give gx = 0 or a planar or spatial beam",
                                        to_string(s.kind), to_string(s.physics)));

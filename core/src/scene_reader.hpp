@@ -117,6 +117,9 @@ double default_kappa(const Reader& r, const SectionSpec& sp, double nu, Theory t
 /// [[segments]]: each piece's length and section (before [material]: the first piece's section
 /// is the scene's cross_section, its default kappa's shape).
 void read_segment_sections(const Reader& r, const toml::table& root, Scene& s);
+/// A piece's or member's `material = {...}` (`where` names it): E, G, nu, rho, kappa over the
+/// scene's `m`, E, G and nu kept consistent. Returns whether kappa was given.
+bool read_material_overrides(const Reader& r, const toml::table& o, const std::string& where, Material& m);
 /// [[segments]] material = {...}: each piece's material, the scene's with the piece's overrides.
 void read_segment_materials(const Reader& r, const toml::table& root, Scene& s);
 
@@ -134,6 +137,12 @@ void read_gravity(const Reader& r, const toml::table& root, Scene& s);
 void read_rotor(const Reader& r, const toml::table& root, Scene& s);
 /// The rules of a rotor scene (scene_parse_rotor.cpp; validate() calls it).
 void validate_rotor(const Reader& r, const Scene& s);
+
+/// A frame's nodes, members, supports, masses, loads, gravity and request (scene_parse_frame.cpp),
+/// after [scene] and [material].
+void read_frame(const Reader& r, const toml::table& root, Scene& s);
+/// The rules of a frame scene (scene_parse_frame.cpp; validate() calls it for frames).
+void validate_frame(const Reader& r, const Scene& s);
 
 /// [request.transient] (scene_parse_transient.cpp).
 void read_transient(const Reader& r, const toml::node& n, Scene& s);

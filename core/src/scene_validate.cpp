@@ -96,6 +96,10 @@ void validate_transient(const Reader& r, const Scene& s) {
 
 void validate(const Scene& s) {
   Reader r(s.source);
+  if (s.is_frame()) {
+    scene_detail::validate_frame(r, s);
+    return;
+  }
   auto finite_pos = [&](const std::string& key, double v) {
     if (!(std::isfinite(v) && v > 0)) r.fail(key, fmt::format("must be finite and > 0 (got {})", v));
   };

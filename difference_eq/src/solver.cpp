@@ -145,7 +145,9 @@ RegularBeam beam_of(const Scene& s, long R) {
 Capability DifferenceEqSolver::supports(const Scene& s) const {
   Capability c;
   if (!s.is_beam()) {
-    c.reason = "difference_eq solves beams only (a regular chain of Hermite beam elements); plates are not supported";
+    c.reason = fmt::format("difference_eq solves beams only (a regular chain of Hermite beam elements); {}s are not "
+                           "supported",
+                           to_string(s.kind));
     return c;
   }
   if (s.is_stepped() || s.has_tapered_pieces()) {

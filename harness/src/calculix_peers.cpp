@@ -142,6 +142,7 @@ std::vector<std::array<double, 4>> peer_shares(const Scene& s, const std::vector
 std::string calculix_peer_element(const Scene& s) { return s.is_beam() ? "B32R" : "S8R"; }
 
 std::string calculix_peer_unsupported_reason(const Scene& s) {
+  if (s.is_frame()) return "the CalculiX peers are written for one beam or plate, not for frames yet";
   if (s.is_beam()) {
     if (s.cross_section.shape != SectionShape::Rectangle)
       return "the B32R beam reference is written with a rectangular section only (got a " +

@@ -47,6 +47,10 @@ struct Deflection {
   double u = 0, v = 0, w = 0;        ///< m
   double theta_x = 0, theta_y = 0, theta_z = 0;  ///< rad, right-handed about the axes
   bool has_forces = false;  ///< whether `forces` was computed (the back-end gives them for this scene)
+  /// Frames: the probe as written ("B", or "BC@0.5": member BC at half its length), its point in
+  /// global axes (m), the displacements in global axes, the forces in the member's axes.
+  std::string probe;
+  std::array<double, 3> point{};
   InternalForces forces;
 };
 
@@ -57,6 +61,7 @@ struct Reaction {
   std::string support;               ///< "x0", "xL", "points[0]", ...
   std::array<double, 2> position{};  ///< beam: {x, 0}, m
   std::array<double, 3> force{}, moment{};
+  std::array<double, 3> point{};  ///< frames: the supported node, global axes, m
 };
 
 struct FrfSample {

@@ -17,6 +17,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -37,7 +38,7 @@ class InputError : public std::runtime_error {
   std::string source_, key_, reason_;
 };
 
-enum class SceneKind { Beam, Plate };
+enum class SceneKind { Beam, Plate, Frame };
 /// Which fields a beam carries. Plates are always `Bending` (w, theta_x, theta_y).
 enum class Physics {
   Bending,  ///< transverse bending in x-z only
@@ -291,7 +292,8 @@ std::string to_string(TransientRequest::Load);  ///< step, impulse, ramp, harmon
 
 struct Request {
   int modes = 0;
-  std::vector<std::array<double, 2>> probes;  ///< beam: {x, 0}; plate: {x, y}
+  /// beam: {x, 0}; plate: {x, y}; frame: one per probe of Frame::probes (its global x and z).
+  std::vector<std::array<double, 2>> probes;
   std::optional<FrfRequest> frf;
   std::optional<ShapeRequest> shapes;  ///< absent: no shapes are computed (nor paid for)
   std::optional<TransientRequest> transient;  ///< absent: no time history
@@ -319,6 +321,8 @@ struct SceneOption {
   std::string key;
   std::string text;
 };
+
+struct Frame;  // frame.hpp: a frame's nodes, members and what acts on them
 
 struct Scene {
   std::string name;
@@ -348,9 +352,13 @@ struct Scene {
   std::vector<std::string> notes;  ///< defaults applied, errata cited, etc.
   /// [backend.NAME] tables, by back-end name (names checked against the registry by the caller).
   std::map<std::string, std::vector<SceneOption>> backend_options;
+  /// A frame's nodes, members, supports, masses, loads and probes (kind frame only; frame.hpp).
+  /// Shared and immutable once read: copies of the scene see the same frame.
+  std::shared_ptr<const Frame> frame;
 
   bool is_beam() const { return kind == SceneKind::Beam; }
   bool is_plate() const { return kind == SceneKind::Plate; }
+  bool is_frame() const { return kind == SceneKind::Frame; }
   Section section() const { return section_properties(geometry, cross_section); }
   /// A beam's pieces: `segments`, or the uniform beam as one piece over [0, length].
   std::vector<Segment> beam_pieces() const;
