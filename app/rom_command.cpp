@@ -16,6 +16,9 @@ namespace {
 
 /// "x" (beam) or "x,y" (plate), inside the body; InputError naming the option otherwise.
 std::array<double, 2> parse_point(const mb::Scene& s, const std::string& text, const std::string& option) {
+  if (s.is_frame())
+    throw mb::InputError(s.source, "scene.kind",
+                         "a reduced model of a frame is not available yet (its modes carry no shapes); beams and plates only");
   std::array<double, 2> p{0.0, 0.0};
   const char* c = text.c_str();
   char* end = nullptr;

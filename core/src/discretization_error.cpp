@@ -3,6 +3,7 @@
 // asymptotic, judged against the scene's tolerance.
 #include "solve_internal.hpp"
 
+#include "modalbench/frame.hpp"
 #include "modalbench/extrapolation.hpp"
 
 #include <fmt/format.h>
@@ -328,7 +329,11 @@ detail::Verdict detail::judge_discretization(const Scene& scene, double order, c
   std::vector<std::string> problems;
   if (scene.request.modes > 0 && !fine.frequencies_rad_s.empty())
     judge_frequencies(fine, coarse, coarser, coarsest, order, gci, e, problems);
-  if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, scene.geometry.length, gci, e, problems);
+  // A frame's length scale: its longest member.
+  double length = scene.geometry.length;
+  if (scene.is_frame())
+    for (const FrameMember& m : scene.frame->members) length = std::max(length, m.length);
+  if (!scene.request.probes.empty()) judge_deflections(fine, coarse, coarser, length, gci, e, problems);
   if (scene.rotor && !fine.campbell.empty()) judge_campbell(fine, coarse, coarser, gci, e, problems);
   // Every judged quantity with a confirmed order: the factor of the whole estimate is 1.25.
   if (gci.judged() > 0 && gci.confirmed() == gci.judged() && scene.request.probes.empty() && !scene.rotor)

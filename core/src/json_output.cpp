@@ -90,6 +90,7 @@ nlohmann::json forces_json(const Scene& scene, const InternalForces& f) {
     e["mxy_N_m_per_m"] = num(f.mxy);
     return e;
   }
+  if (scene.is_frame()) e["axes"] = "member";  // a member's resultants, in its own axes
   e["My_N_m"] = num(f.My);
   e["Qz_N"] = num(f.Qz);
   if (carries_axial(scene.physics)) e["N_N"] = num(f.N);

@@ -54,6 +54,7 @@ void deflection_warnings(const Scene& s, const Result& r, std::vector<std::strin
 /// thickness) lies where the theory no longer holds: shear and rotary inertia decide it there.
 void half_wave_warnings(const Scene& s, const Result& r, std::vector<std::string>& out) {
   if (r.frequencies_rad_s.empty() || !(s.theory == Theory::EulerBernoulli || s.theory == Theory::Kirchhoff)) return;
+  if (s.is_frame()) return;  // members of several sections: not judged here yet
   const double omega = r.frequencies_rad_s.back();
   if (!(omega > 0)) return;
   double k4 = 0, depth = s.geometry.height;

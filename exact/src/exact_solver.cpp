@@ -335,7 +335,8 @@ class ExactKernels final : public Kernels {
     }
   }
   void shapes(Result& r) override {
-    if (s_.is_beam()) r.mode_shapes = beam_shapes(s_, list_.modes);
+    if (s_.is_frame()) r.summary.warnings.push_back("mode shapes are not computed for frames yet");
+    else if (s_.is_beam()) r.mode_shapes = beam_shapes(s_, list_.modes);
     else if (!plate_shapes(s_, list_.modes, r.mode_shapes))
       r.summary.warnings.push_back("mode shapes are not computed for the exact Mindlin plate");
   }

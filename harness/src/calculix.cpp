@@ -279,6 +279,7 @@ std::string calculix_version(const std::string& exe) {
 }
 
 std::string calculix_unsupported_reason(const Scene& s) {
+  if (s.is_frame()) return "the 3D reference is written for one beam or plate, not for frames";
   if (s.is_beam()) {
     if (s.cross_section.shape != SectionShape::Rectangle)
       return "the 3D reference meshes rectangular sections only (got a " + to_string(s.cross_section.shape) + ")";

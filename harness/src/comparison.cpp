@@ -18,7 +18,8 @@ using clock_type = std::chrono::steady_clock;
 /// The scene as the warm-up run solves it: with mode shapes (default sampling) for MAC pairing.
 Scene with_shapes(const Scene& scene, const CompareOptions& opt) {
   Scene s = scene;
-  if (opt.shapes && s.request.modes > 0 && !s.request.shapes) {
+  // Frames: no mode shapes yet (modes are paired by order).
+  if (opt.shapes && s.request.modes > 0 && !s.request.shapes && !s.is_frame()) {
     ShapeRequest sr;
     sr.nx = s.is_beam() ? ShapeRequest::kBeamDefaultNx : ShapeRequest::kPlateDefaultNx;
     sr.ny = s.is_beam() ? 1 : ShapeRequest::kPlateDefaultNy;
@@ -229,8 +230,15 @@ void measure_errors(const Scene& scene, const Reference& ref, RunRecord& run) {
   run.deflection_error = kNaN;
   if (!ref.deflections.empty() && r.deflections.size() == ref.deflections.size()) {
     double scale = 0, worst = 0;
-    for (const auto& d : ref.deflections) scale = std::max(scale, std::abs(d.w));
-    for (std::size_t i = 0; i < ref.deflections.size(); ++i) worst = std::max(worst, std::abs(r.deflections[i].w - ref.deflections[i].w));
+    // A frame sways: every translation counts (a beam's and a plate's errors are in w).
+    const auto size = [&](const Deflection& d) {
+      return scene.is_frame() ? std::max({std::abs(d.u), std::abs(d.v), std::abs(d.w)}) : std::abs(d.w);
+    };
+    const auto diff = [&](const Deflection& a, const Deflection& b) {
+      return scene.is_frame() ? std::max({std::abs(a.u - b.u), std::abs(a.v - b.v), std::abs(a.w - b.w)}) : std::abs(a.w - b.w);
+    };
+    for (const auto& d : ref.deflections) scale = std::max(scale, size(d));
+    for (std::size_t i = 0; i < ref.deflections.size(); ++i) worst = std::max(worst, diff(r.deflections[i], ref.deflections[i]));
     if (scale > 0) run.deflection_error = worst / scale;
   }
   run.frf_error_db = kNaN;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 
+#include "modalbench/frame.hpp"
 #include "modalbench/harness/paper_tables.hpp"
 #include "report_document.hpp"
 
@@ -267,7 +268,16 @@ Series deflection_series(const SceneComparison& c, const std::string& title, con
 
 void write_deflections(Doc& doc, const SceneComparison& c, Context& ctx, const std::string& sid) {
   if (c.scene.request.probes.empty()) return;
-  std::vector<std::string> head = {c.scene.is_beam() ? "probe x [m]" : "probe (x, y) [m]", "reference w [m]"};
+  // A frame's probes are named (a node, a member at s) and sway: (u, w) per probe, (u, v, w) in space.
+  const bool frame = c.scene.is_frame(), spatial = frame && c.scene.physics == Physics::Spatial;
+  const std::string comps = !frame ? "w" : spatial ? "(u, v, w)" : "(u, w)";
+  const auto value = [&](const Deflection& d) {
+    return !frame   ? fmt::format("{:.6e}", d.w)
+           : spatial ? fmt::format("({:.6e}, {:.6e}, {:.6e})", d.u, d.v, d.w)
+                     : fmt::format("({:.6e}, {:.6e})", d.u, d.w);
+  };
+  std::vector<std::string> head = {c.scene.is_beam() ? "probe x [m]" : frame ? "probe" : "probe (x, y) [m]",
+                                   "reference " + comps + " [m]"};
   std::vector<const RunRecord*> cols;
   std::vector<Series> series;
   const std::string ref_title = "reference (" + c.reference.source + ")";
@@ -282,16 +292,18 @@ void write_deflections(Doc& doc, const SceneComparison& c, Context& ctx, const s
     if (b != c.reference.source)
       if (const RunRecord* f = finest(c, b); f && f->result.deflections.size() == c.scene.request.probes.size()) {
         cols.push_back(f);
-        head.push_back(run_label(*f) + " w [m]");
+        head.push_back(run_label(*f) + " " + comps + " [m]");
         series.push_back(deflection_series(c, run_label(*f), f->result.deflections, "points"));
       }
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < c.scene.request.probes.size(); ++i) {
     const auto& p = c.scene.request.probes[i];
     std::vector<std::string> row = {
-        c.scene.is_beam() ? num_str(p[0]) : fmt::format("({}, {})", p[0], p[1]),
-        i < c.reference.deflections.size() ? fmt::format("{:.6e}", c.reference.deflections[i].w) : "—"};
-    for (const RunRecord* f : cols) row.push_back(fmt::format("{:.6e}", f->result.deflections[i].w));
+        c.scene.is_beam() ? num_str(p[0])
+        : frame           ? (i < c.scene.frame->probes.size() ? c.scene.frame->probes[i].label : "?")
+                          : fmt::format("({}, {})", p[0], p[1]),
+        i < c.reference.deflections.size() ? value(c.reference.deflections[i]) : "—"};
+    for (const RunRecord* f : cols) row.push_back(value(f->result.deflections[i]));
     rows.push_back(row);
   }
   if (cols.empty() && c.reference.deflections.empty()) return;

@@ -26,10 +26,17 @@ std::string array(const std::string& name, int components, const std::vector<dou
   return out + "\n</DataArray>\n";
 }
 
-std::string grid(const std::vector<std::array<double, 2>>& pts, const std::vector<std::vector<long>>& cells,
+/// A beam's or plate's sample points (x, y) as points in space (z = 0).
+std::vector<std::array<double, 3>> in_space(const std::vector<std::array<double, 2>>& pts) {
+  std::vector<std::array<double, 3>> out;
+  for (const auto& p : pts) out.push_back({p[0], p[1], 0.0});
+  return out;
+}
+
+std::string grid(const std::vector<std::array<double, 3>>& pts, const std::vector<std::vector<long>>& cells,
                  int cell_type, const std::string& point_data) {
   std::vector<double> xyz;
-  for (const auto& p : pts) xyz.insert(xyz.end(), {p[0], p[1], 0.0});
+  for (const auto& p : pts) xyz.insert(xyz.end(), {p[0], p[1], p[2]});
   std::string conn, offs, types;
   long off = 0;
   for (const auto& c : cells) {
@@ -87,16 +94,17 @@ std::vector<std::string> write_vtk(const Scene& scene, const std::string& backen
         if (ms.components[c] >= 3) data += array(label + " " + component_name(ms.components[c]), 1, ms.values[k][c]);
     }
     const std::string path = (std::filesystem::path(dir) / (stem + "_modes.vtu")).string();
-    write_text_file(path, grid(ms.points, cells, type, data));
+    write_text_file(path, grid(in_space(ms.points), cells, type, data));
     written.push_back(path);
   }
   if (!r.deflections.empty()) {
-    std::vector<std::array<double, 2>> pts;
+    std::vector<std::array<double, 3>> pts;
     std::vector<double> disp, rot;
     std::vector<std::vector<long>> cells;
     for (const auto& d : r.deflections) {
       cells.push_back({static_cast<long>(pts.size())});
-      pts.push_back(d.position);
+      // A frame's probe is a point in space (its position holds x and z only).
+      pts.push_back(d.probe.empty() ? std::array<double, 3>{d.position[0], d.position[1], 0.0} : d.point);
       disp.insert(disp.end(), {d.u, d.v, d.w});
       rot.insert(rot.end(), {d.theta_x, d.theta_y, d.theta_z});
     }

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "modalbench/frame.hpp"
 #include "modalbench/rfem/analysis.hpp"
 #include "modalbench/rfem/system.hpp"
 
@@ -74,6 +75,14 @@ Flexible dense_flexible(const System& sys, const Eigen::MatrixXd& R, long want, 
 /// Not reported (a warning) where the multipliers do not balance the unreduced model to 1e-8.
 void beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                     const std::vector<PointAction>& actions, Result& r);
+/// A frame's support reactions, one per supported node (the SDE to ground at its anchor), under the
+/// loads fq over the body DOFs. Not reported (a warning) where the multipliers do not balance.
+void frame_reactions(const Frame& f, const Model& model, const System& sys, const Eigen::VectorXd& z,
+                     const Eigen::VectorXd& fq, Result& r);
+/// A frame's statics on mesh n (frame_statics.cpp): node loads on the nodes' anchors, line loads by
+/// two Gauss points per rigid element's share of its member (its cell), displacements at node probes
+/// (the anchor's) and member probes (linear between the two element centres around it), reactions.
+void frame_statics(const Scene& s, const Model& model, const System& sys, int n, Result& r);
 /// A plate's support reactions: per edge (x0, xL, y0, yB: the sum of its SDEs' forces, with their
 /// moment about the edge's middle, where the reaction is placed; the Kirchhoff corner forces fall in
 /// the corner elements' SDEs of the two edges) and per support at a point. Not reported (a warning)

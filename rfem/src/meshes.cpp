@@ -2,6 +2,7 @@
 // stress meshes, and the error estimate's coarser and finer meshes.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <vector>
@@ -44,6 +45,13 @@ int beam_mesh_on_features(const Scene& s, int n) {
 /// half-wave in each direction.
 Discretization default_mesh(const Scene& s) {
   const int k = std::max(1, s.request.modes);
+  if (s.is_frame()) {
+    // The modes spread over the members: about 8 segments on the shortest member per mode asked,
+    // a power of 2 from 16 (second order: ~1e-3 on the first modes).
+    int n = 16;
+    while (n < 8L * (k + 1) && n < (1 << 16)) n *= 2;
+    return {{n}};
+  }
   if (s.is_beam()) {
     // About 32 segments per half-wave of the highest requested mode (second order: ~1e-3).
     int n = 128;
@@ -67,6 +75,10 @@ Discretization default_mesh(const Scene& s) {
 
 std::vector<Discretization> mesh_ladder(const Scene& s) {
   std::vector<Discretization> v;
+  if (s.is_frame()) {
+    for (int f : {2, 4, 8, 16, 32, 64}) v.push_back({{f}});
+    return v;
+  }
   if (s.is_beam()) {
     // Steps, supports and masses on element centres or cell boundaries, as the default mesh: off
     // them a step's cell changes with every mesh and the errors fall unevenly (a stepped shaft on
@@ -83,6 +95,7 @@ std::vector<Discretization> mesh_ladder(const Scene& s) {
 }
 
 std::vector<Discretization> stress_meshes(const Scene& s) {
+  if (s.is_frame()) return {{{4096}}};
   if (s.is_beam()) return {{{10000}}, {{100000}}};
   const double a = s.geometry.length, b = s.geometry.width, longest = std::max(a, b);
   return {{{std::max(2, static_cast<int>(std::lround(100.0 * a / longest))),
@@ -96,6 +109,10 @@ std::optional<CoarserMesh> coarser_mesh(const Scene& s, const Discretization& me
   // the symmetric clamped-clamped paper beam shows fourth).
   if (s.is_beam() && mesh.counts.size() == 1 && mesh.counts[0] >= 2)
     return CoarserMesh{{{mesh.counts[0] / 2}}, static_cast<double>(mesh.counts[0]) / (mesh.counts[0] / 2), 2.0, 3.0};
+  // Frames: each member's segments halve with n (frame_member_segments is linear in n for even n);
+  // the next order is not measured on frames yet, so no extrapolation.
+  if (s.is_frame() && mesh.counts.size() == 1 && mesh.counts[0] >= 2 && mesh.counts[0] % 2 == 0)
+    return CoarserMesh{{{mesh.counts[0] / 2}}, 2.0, 2.0, std::numeric_limits<double>::quiet_NaN()};
   // Plates: halve each side that keeps at least 2 fragments (a side too coarse to halve stays).
   if (s.is_plate() && mesh.counts.size() == 2 && std::max(mesh.counts[0], mesh.counts[1]) >= 4) {
     const int nx = mesh.counts[0] >= 4 ? mesh.counts[0] / 2 : mesh.counts[0];
@@ -163,7 +180,7 @@ std::optional<Discretization> finer_mesh(const Scene& s, const Discretization& m
   for (int n : mesh.counts) {
     long m = std::lround(std::ceil(n * factor));
     m += m % 2;
-    if (m > (s.is_beam() ? 2000000L : 2000L)) return std::nullopt;
+    if (m > (s.is_plate() ? 2000L : 2000000L)) return std::nullopt;
     d.counts.push_back(static_cast<int>(m));
   }
   return d;

@@ -257,7 +257,11 @@ std::map<int, SupportForce> multiplier_forces(const Model& m, const detail::Rigi
 
 SupportForces support_forces(const Model& m, const System& sys, const Eigen::VectorXd& z,
                              const std::vector<PointAction>& actions) {
-  const Eigen::VectorXd q = sys.T * z, fq = detail::point_loads_q(m, actions);
+  return support_forces_q(m, sys, z, detail::point_loads_q(m, actions));
+}
+
+SupportForces support_forces_q(const Model& m, const System& sys, const Eigen::VectorXd& z, const Eigen::VectorXd& fq) {
+  const Eigen::VectorXd q = sys.T * z;
   const SpMat B = detail::builder_basis(m);
   const Eigen::VectorXd f0 = B.transpose() * fq;
   const SpMat Kq = detail::over_q(m, detail::element_triplets(m, false));
@@ -303,8 +307,8 @@ namespace {
 /// balance's own terms are larger (stiff springs carrying small motions), to 64 times its rounding
 /// floor: beyond that the balance failed, within it the reactions carry that floor's rounding.
 std::optional<SupportForces> balanced_support_forces(const Model& model, const System& sys, const Eigen::VectorXd& z,
-                                                     const std::vector<PointAction>& actions, Result& r) {
-  SupportForces sf = support_forces(model, sys, z, actions);
+                                                     const Eigen::VectorXd& fq, Result& r) {
+  SupportForces sf = support_forces_q(model, sys, z, fq);
   r.summary.set_diagnostic("reaction_residual", sf.residual);
   r.summary.set_diagnostic("reaction_rounding_floor", sf.rounding);
   const double allowed = std::max(1e-8, 64.0 * sf.rounding);
@@ -323,7 +327,7 @@ std::optional<SupportForces> balanced_support_forces(const Model& model, const S
 /// multipliers do not balance the unreduced model to 1e-8.
 void detail::beam_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                             const std::vector<PointAction>& actions, Result& r) {
-  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, actions, r);
+  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, detail::point_loads_q(model, actions), r);
   if (!checked) return;
   const SupportForces& sf = *checked;
   for (std::size_t i = 0; i < sf.forces.size(); ++i) {
@@ -338,9 +342,27 @@ void detail::beam_reactions(const Scene& s, const Model& model, const System& sy
   }
 }
 
+void detail::frame_reactions(const Frame& f, const Model& model, const System& sys, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& fq, Result& r) {
+  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, fq, r);
+  if (!checked) return;
+  for (std::size_t i = 0; i < checked->forces.size(); ++i) {
+    const SupportForce& sf = checked->forces[i];
+    const std::string& id = model.supports[i].second;
+    const auto node = std::find_if(f.nodes.begin(), f.nodes.end(), [&](const FrameNode& n) { return n.id == id; });
+    Reaction rc;
+    rc.support = id;
+    rc.point = node->x;
+    rc.position = {rc.point[0], rc.point[2]};
+    rc.force = {sf.force.x(), sf.force.y(), sf.force.z()};
+    rc.moment = {sf.moment.x(), sf.moment.y(), sf.moment.z()};
+    r.reactions.push_back(rc);
+  }
+}
+
 void detail::plate_reactions(const Scene& s, const Model& model, const System& sys, const Eigen::VectorXd& z,
                              const std::vector<PointAction>& actions, Result& r) {
-  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, actions, r);
+  const std::optional<SupportForces> checked = balanced_support_forces(model, sys, z, detail::point_loads_q(model, actions), r);
   if (!checked) return;
   const SupportForces& sf = *checked;
   const double a = s.geometry.length, b = s.geometry.width;

@@ -43,7 +43,8 @@ double plate_cluster(double a, double b, double k) {
 Capability RfemSolver::supports(const Scene& s) const {
   Capability c;
   if (s.is_frame()) {
-    c.reason = "rfem does not model frames yet (members joined at nodes: issue 49); exact solves them";
+    c.reason = frame_refusal(s);
+    c.modes = c.statics = c.reason.empty();
     return c;
   }
   if (s.is_beam() || s.is_plate()) {
@@ -71,7 +72,16 @@ ResourceEstimate RfemSolver::estimate(const Scene& s, const Discretization& mesh
   const bool modal_frf = rq.frf && options.resolved.get_integer("frf_modes") > 0;
   const double samples = rq.frf ? rq.frf->points : 0;
   const double k = std::max<double>(rq.modes, modal_frf ? static_cast<double>(options.resolved.get_integer("frf_modes")) : 0.0);
-  if (s.is_beam() && mesh.counts.size() == 1) {
+  if (s.is_frame() && mesh.counts.size() == 1 && mesh.counts[0] >= 1) {
+    // As a beam of all the members' segments (below).
+    double n = 0;
+    for (std::size_t i = 0; i < s.frame->members.size(); ++i)
+      n += frame_member_segments(*s.frame, i, std::min(mesh.counts[0], 2000000));
+    const double d = s.frame->spatial ? 3.0 : 1.5;
+    e.bytes = std::max(k > 0 ? 3.1e3 * n * d * (1 + k / 60) : 0.0, rq.probes.empty() ? 0.0 : 1.8e3 * n * d);
+    e.seconds = (k > 0 ? n * d * (6e-6 + 4.3e-7 * std::pow(k, 1.5)) : 0.0) + (rq.probes.empty() ? 0.0 : 3.6e-6 * n * d);
+    e.basis = fmt::format("frame of {:.0f} segments, {} modes", n, k);
+  } else if (s.is_beam() && mesh.counts.size() == 1) {
     const double n = mesh.counts[0];
     const double d = s.physics == Physics::Spatial   ? 3.0
                      : s.physics == Physics::Lateral ? 2.0
@@ -159,6 +169,20 @@ std::vector<OptionSpec> RfemSolver::option_specs() const {
 
 Model RfemSolver::build_model(const Scene& s, const Discretization& mesh, const ResolvedOptions* options) {
   const std::string src = mesh_source(s);
+  if (s.is_frame()) {
+    if (mesh.counts.size() != 1)
+      throw InputError(src, "--mesh",
+                       fmt::format("a frame mesh is one count N (segments on its shortest member), e.g. 16 (got '{}')",
+                                   mesh.spec()));
+    const int n = mesh.counts[0];
+    if (n < 1 || n > 2000000)
+      throw InputError(src, "--mesh", fmt::format("a frame needs N in [1, 2000000] segments on its shortest member (got {})", n));
+    try {
+      return build_frame(s, n);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(src, "--mesh", e.what());
+    }
+  }
   if (s.is_beam()) {
     if (mesh.counts.size() != 1)
       throw InputError(src, "--mesh",

@@ -182,8 +182,8 @@ std::string solve_frf(const Scene& s, const Model& model, const System& sys, con
 
 class RfemKernels final : public Kernels {
  public:
-  RfemKernels(const Scene& s, const Options& options, Model model)
-      : s_(s), options_(options), model_(std::move(model)), sys_(assemble(model_)) {}
+  RfemKernels(const Scene& s, const Options& options, Model model, int frame_mesh)
+      : s_(s), options_(options), model_(std::move(model)), sys_(assemble(model_)), frame_mesh_(frame_mesh) {}
   const System& system() const { return sys_; }
   const Model& model() const { return model_; }
 
@@ -193,7 +193,8 @@ class RfemKernels final : public Kernels {
   }
   void shapes(Result& r) override { r.mode_shapes = sample_shapes(s_, model_, sys_, md_.Z, md_.lambda, shown_); }
   void statics(Result& r) override {
-    solve_statics(s_, model_, sys_, r);
+    if (s_.is_frame()) frame_statics(s_, model_, sys_, frame_mesh_, r);
+    else solve_statics(s_, model_, sys_, r);
     r.summary.method += "; statics: sparse LDL' (AMD" + std::string(sys_.m() > 0 ? ", saddle point with multipliers" : "") +
                         "), mechanisms detected structurally";
   }
@@ -299,6 +300,7 @@ class RfemKernels final : public Kernels {
   const Options& options_;
   const Model model_;
   const System sys_;
+  const int frame_mesh_;  ///< a frame's mesh n (segments on its shortest member); 0 otherwise
   Modes md_;
   bool solved_ = false;
   long shown_ = 0;  ///< the modes reported (at most request.modes)
@@ -310,7 +312,7 @@ std::unique_ptr<Kernels> make_kernels(const Scene& s, const Discretization& mesh
                                       Result& r) {
   auto& sum = r.summary;
   const ResolvedOptions& opt = options.resolved;
-  auto kernels = std::make_unique<RfemKernels>(s, options, std::move(model));
+  auto kernels = std::make_unique<RfemKernels>(s, options, std::move(model), s.is_frame() ? mesh.counts.at(0) : 0);
   const Model& m = kernels->model();
   const System& sys = kernels->system();
   sum.unknowns = sys.n() + sys.m();

@@ -223,6 +223,9 @@ void label(const Scene& scene, const RomRequest& rq, int N, StateSpaceModel& m) 
 
 /// Inputs and outputs on the body, at least one of each (InputError naming the list and index).
 void check_request(const Scene& s, const RomRequest& rq) {
+  if (s.is_frame())
+    throw InputError(s.source.empty() ? "rom" : s.source, "scene.kind",
+                     "a reduced model of a frame is not available yet (its modes carry no shapes); beams and plates only");
   if (rq.inputs.empty()) throw InputError("rom", "inputs", "at least one input point is needed");
   if (rq.outputs.empty()) throw InputError("rom", "outputs", "at least one output point is needed");
   if (rq.modes < 1) throw InputError("rom", "modes", fmt::format("must be >= 1 (got {})", rq.modes));

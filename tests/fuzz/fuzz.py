@@ -1135,6 +1135,10 @@ def check_success(obj: dict, scene: dict | None) -> list[str]:
     for i, d in enumerate(obj.get("deflections") or []):
         if isinstance(d, dict):
             for k, v in d.items():
+                if k == "probe" or (k == "forces" and isinstance(v, dict) and "axes" in v):  # a frame's labels
+                    v = {kk: vv for kk, vv in v.items() if kk != "axes"} if k == "forces" else None
+                    if v is None:
+                        continue
                 values = list(v.values()) if isinstance(v, dict) else v if isinstance(v, list) else [v]  # forces: a dict
                 for x in values:
                     if not _finite(x):

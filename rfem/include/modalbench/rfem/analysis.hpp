@@ -115,6 +115,8 @@ struct SupportForces {
 /// the rigid rows: links between elements and holds to ground), so K's reduction is not undone.
 SupportForces support_forces(const Model& model, const System& sys, const Eigen::VectorXd& z,
                              const std::vector<PointAction>& actions);
+/// The same for loads given over the body DOFs q (fq, as detail::point_loads_q gives them).
+SupportForces support_forces_q(const Model& model, const System& sys, const Eigen::VectorXd& z, const Eigen::VectorXd& fq);
 
 struct FrfResult {
   std::vector<double> omega;                      ///< samples kept

@@ -50,6 +50,7 @@
 
 #include <Eigen/Dense>
 
+#include "modalbench/frame.hpp"
 #include "modalbench/rfem/model.hpp"
 #include "modalbench/scene.hpp"
 
@@ -76,6 +77,30 @@ Model build_plate(const Scene& scene, const PlateOptions& options);
 /// d(theta_y)/dy (gb). Added to the side springs it makes the fragment energy
 /// D A / 2 [kx^2 + ky^2 + 2 nu kx ky + (1 - nu)/2 kxy^2] (+ non-negative hourglass terms).
 Eigen::MatrixXd plate_fragment_correction(double D, double nu, double dl, double db);
+
+/// Frame scene -> model: each member cut into frame_member_segments(n) segments (n on the shortest
+/// member, the others in proportion to their length, rounded), built as a beam (rigid elements at
+/// its nodes, half-length ends, SDEs at the segments' middles in the member's axes); at each frame
+/// node the members' end elements are joined by rigid links to one of them (the anchor: a member
+/// joined rigidly, where there is one), a hinged end's link leaving its bending rotations free; the
+/// node's support acts on the anchor, its point mass is added to it. Throws std::invalid_argument
+/// for a member inclined to the global axes (frame_refusal).
+Model build_frame(const Scene& scene, int n);
+/// Why rfem cannot build this frame ("" if it can): a member not along a global axis (its rigid
+/// elements' inertia tensor would not be diagonal in global axes).
+std::string frame_refusal(const Scene& scene);
+/// The segments of member `member` on mesh n: n times its length over the shortest member's, rounded
+/// (at least n).
+int frame_member_segments(const Frame& frame, std::size_t member, int n);
+/// Where build_frame puts a frame's rigid elements on mesh n: per member its first element (the
+/// one at its first node; element first + j sits at s = j / segments) and its segments; per node
+/// its anchor element (the one its support and mass act on, which its loads and probes use) and
+/// whether that is a hinged member end (every member hinged there).
+struct FrameLayout {
+  std::vector<int> first, segments, anchor;
+  std::vector<bool> anchor_released;
+};
+FrameLayout frame_layout(const Frame& frame, int n);
 
 struct BoxSpec {
   int nx = 1, ny = 1, nz = 1;  ///< cubes along x, y, z
