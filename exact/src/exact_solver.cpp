@@ -502,10 +502,11 @@ std::unique_ptr<Kernels> ExactSolver::build(const Scene& s, const Discretization
     r.summary.method = fmt::format("exact {} beam: dynamic stiffness + Wittrick-Williams count", to_string(s.theory));
   if (s.is_frame())
     r.summary.method = fmt::format(
-        "exact {} frame: each member's exact dynamic stiffness (axial, bending{}, by doubling from pieces with "
-        "|p| h <= 1), assembled at the nodes; frequencies by bisection on the Wittrick-Williams count (the members' "
-        "clamped-end counts J0 plus the negative pivots of K(omega)) to 1e-13 in omega^2; statics by K(0) with each "
-        "member's exact fixed-end forces",
+        "exact {} frame: each member's exact dynamic stiffness (axial, bending{}: bars and Euler-Bernoulli "
+        "bending in closed form, Timoshenko bending by doubling from pieces with |p| h <= 1), assembled at the "
+        "nodes; frequencies by bisection on the Wittrick-Williams count (the members' clamped-end counts J0 plus the "
+        "negative pivots of K(omega); a member cut where omega lies next to one of its clamped frequencies) to 1e-13 "
+        "in omega^2; statics by K(0) with each member's exact fixed-end forces",
         to_string(s.theory), s.frame->spatial ? " in both planes, torsion" : "");
   if (s.is_beam() && s.has_tapered_pieces())
     r.summary.method +=

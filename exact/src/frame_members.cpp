@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "modalbench/numerics/segment_dynamic_stiffness.hpp"
@@ -109,15 +110,73 @@ std::vector<MemberField> member_fields(const FrameMember& member, bool spatial, 
   return out;
 }
 
+namespace {
+
+/// A bar's dimensionless dynamic stiffness in closed form, k = sqrt(c) > 0 (u'' = -c u):
+/// k / sin k [[cos k, -1], [-1, cos k]]; J0 = floor(k / pi) (clamped at both ends: k = n pi).
+LongSegment bar_closed_form(double c) {
+  const double k = std::sqrt(c), s = std::sin(k), co = std::cos(k);
+  LongSegment out;
+  out.K.resize(2, 2);
+  out.K << k * co / s, -k / s, -k / s, k * co / s;
+  out.clamped_below = static_cast<int>(std::floor(k / std::numbers::pi));
+  out.min_pivot_scale = std::abs(s);  // 0 at the clamped frequencies, K's poles
+  return out;
+}
+
+/// An Euler-Bernoulli beam's dimensionless dynamic stiffness in closed form, b = c^(1/4) (w'''' = c w),
+/// from the general solution w = C1 cos b xi + C2 sin b xi + C3 exp(-b xi) + C4 exp(-b (1 - xi)),
+/// whose basis stays well conditioned however large b is (no cosh, no sinh): K = F B^-1 with B the
+/// end displacements (w, theta = sign w') and F the end forces (-V, -M at xi = 0; V, M at 1) of the
+/// basis, M = sign w'', V = -w''' (the state's relations, MemberField::state). J0 counts the
+/// clamped-clamped roots of cos b cosh b = 1 below b (Williams & Wittrick):
+/// i - (1 - (-1)^i s) / 2 with i = floor(b / pi), s = sign(1 - cosh b cos b) = sign(sech b - cos b).
+LongSegment bending_closed_form(double c, double sign) {
+  const double b = std::pow(c, 0.25);
+  const auto derivative = [b](int n, double xi) {
+    const double bn = std::pow(b, n), shift = n * std::numbers::pi / 2;
+    return Eigen::Vector4d(bn * std::cos(b * xi + shift), bn * std::sin(b * xi + shift),
+                           std::pow(-b, n) * std::exp(-b * xi), bn * std::exp(-b * (1 - xi)));
+  };
+  Eigen::Matrix4d B, F;
+  B.row(0) = derivative(0, 0).transpose();
+  B.row(1) = sign * derivative(1, 0).transpose();
+  B.row(2) = derivative(0, 1).transpose();
+  B.row(3) = sign * derivative(1, 1).transpose();
+  F.row(0) = derivative(3, 0).transpose();          // -V(0) = w'''(0)
+  F.row(1) = -sign * derivative(2, 0).transpose();  // -M(0)
+  F.row(2) = -derivative(3, 1).transpose();         // V(1)
+  F.row(3) = sign * derivative(2, 1).transpose();   // M(1)
+  LongSegment out;
+  // K B = F, so B^T K^T = F^T: one LU of B^T.
+  const Eigen::Matrix4d K = B.transpose().fullPivLu().solve(F.transpose()).transpose();
+  out.K = 0.5 * (K + K.transpose());
+  out.asymmetry = (K - K.transpose()).norm() / K.norm();
+  const int i = static_cast<int>(std::floor(b / std::numbers::pi));
+  const double sech = b > 700 ? 0.0 : 1.0 / std::cosh(b), s = sech - std::cos(b) > 0 ? 1.0 : -1.0;
+  out.clamped_below = i - static_cast<int>((1 - (i % 2 == 0 ? 1 : -1) * s) / 2);
+  out.min_pivot_scale = std::abs(sech - std::cos(b));  // 0 at the clamped frequencies, K's poles
+  return out;
+}
+
+}  // namespace
+
 MemberStiffness member_stiffness(const std::vector<MemberField>& fields, double lambda) {
   MemberStiffness out;
   out.K = Eigen::MatrixXd::Zero(kMemberDofs, kMemberDofs);
   for (const MemberField& f : fields) {
     const Eigen::MatrixXd A = f.state(lambda);
-    const double p = state_wavenumbers(A).cwiseAbs().maxCoeff();
-    // The base piece of the doubling has |p| h <= 1: no clamped frequency below omega (J0 = 0 there).
+    // Bars and Euler-Bernoulli bending in closed form (exact to rounding at any frequency); a
+    // Timoshenko member by doubling, from a base piece with |p| h <= 1 (no clamped frequency below
+    // omega there: J0 = 0). At low frequency (|p| <= 1) one exponential of the whole member.
+    const double c = f.m == 1 ? -A(1, 0) : -A(2, 0);
+    const bool closed = f.m == 1 || (f.shear == 0.0 && f.rot_inertia == 0.0);
+    const double p = closed ? (f.m == 1 ? std::sqrt(std::max(c, 0.0)) : std::pow(std::max(c, 0.0), 0.25))
+                            : state_wavenumbers(A).cwiseAbs().maxCoeff();
     const int levels = p > 1.0 ? static_cast<int>(std::ceil(std::log2(p))) : 0;
-    const LongSegment seg = long_segment_dynamic_stiffness(A, 1.0, levels);
+    const LongSegment seg = p <= 1.0 || !closed ? long_segment_dynamic_stiffness(A, 1.0, levels)
+                            : f.m == 1          ? bar_closed_form(c)
+                                                : bending_closed_form(c, f.kind == FieldKind::BendingXZ ? -1.0 : 1.0);
     out.clamped_below += seg.clamped_below;
     out.log_abs_det_tdf += seg.log_abs_det_tdf;
     out.min_pivot_scale = std::min(out.min_pivot_scale, seg.min_pivot_scale);

@@ -59,8 +59,10 @@ struct MemberStiffness {
   Eigen::MatrixXd K;
   int clamped_below = 0;
   double log_abs_det_tdf = 0;
-  /// The smallest LongSegment::min_pivot_scale of its fields (how near omega lies to a clamped
-  /// frequency of a halving, as the doubling sees it), and whether any field was doubled at all.
+  /// How near omega lies to a clamped frequency (a pole of K): the smallest of its fields'
+  /// measures, a doubled field's LongSegment::min_pivot_scale (a halving's clamped frequency, as the
+  /// doubling sees it), a closed form's |sin k| or |sech b - cos b|; and whether any field is past
+  /// |p| = 1 (where the count may cut the member there).
   double min_pivot_scale = 1;
   bool doubled = false;
 };
