@@ -91,8 +91,10 @@ FrameSystem::Statics FrameSystem::statics() const {
   }
   const Eigen::VectorXd q = K.ldlt().solve(F);
   Statics out;
-  out.backward_error = (K * q - F).norm() / (K.norm() * q.norm() + F.norm());
-  if (!std::isfinite(out.backward_error)) throw std::runtime_error("statics: the solve gave non-finite displacements");
+  if (!q.allFinite()) throw std::runtime_error("statics: the solve gave non-finite displacements");
+  // No load on any unknown (every load on held DOFs): q = 0 exactly, nothing to be wrong.
+  const double scale = K.norm() * q.norm() + F.norm();
+  out.backward_error = scale > 0 ? (K * q - F).norm() / scale : 0.0;
   const auto value = [&q](const Row& row) {
     double v = 0;
     for (const Term& t : row) v += t.c * q(t.unknown);

@@ -56,7 +56,11 @@ FrameSystem::FrameSystem(const Scene& scene) : scene_(scene), frame_(*scene.fram
     fields_.push_back(member_fields(m, frame_.spatial, scene.theory, m.length));
     const Section p = m.properties();
     const double I = frame_.spatial ? std::min(p.Iy, p.Iz) : p.Iy;
-    const double s = m.material.E * I / (m.material.rho * p.A * std::pow(m.length, 4));
+    // A member's bending scale EI / (L^3 m), m its mass and every point mass (a heavy mass on a
+    // slender member sets modes far below the member's own).
+    double point_masses = 0;
+    for (const FrameMass& pm : frame_.masses) point_masses += pm.mass;
+    const double s = m.material.E * I / (std::pow(m.length, 3) * (m.material.rho * p.A * m.length + point_masses));
     lambda_scale_ = std::min(lambda_scale_, s);
   }
   number_nodes();

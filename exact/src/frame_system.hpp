@@ -41,7 +41,8 @@ class FrameSystem {
   /// The rigid-body motions K(0) leaves free (the nullity of the diagonally scaled K(0), with
   /// eigenvalues below 1e-12 of the largest taken as zero).
   int rigid_motions() const;
-  /// A scale of the frame's squared frequencies: min over members of EI / (rhoA L^4), 1/s^2.
+  /// A scale of the frame's squared frequencies: min over members of EI / (L^3 (rho A L + the point
+  /// masses)), 1/s^2.
   double lambda_scale() const { return lambda_scale_; }
 
   /// The static solution under every load (gravity included): displacements at the probes, the

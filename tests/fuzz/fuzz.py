@@ -723,6 +723,104 @@ VALID_MUTATIONS = [
     (m_structure, 3),
 ]
 
+# --- frames (scene kind "frame": nodes, members, supports by node id)
+
+
+def _spatial(s) -> bool:
+    return sc_physics(s) == "spatial"
+
+
+def f_move_node(s, rng):
+    n = rng.choice(s["nodes"])
+    k = rng.choice(["x", "z"] + (["y"] if _spatial(s) else []))
+    d = rng.choice([1e-9, 1e-4, 0.1, -0.5, 1.0, 10.0, 1e3])
+    n[k] = num(n.get(k, 0.0), 0.0) + d
+    return f"frame: node {n.get('id')}.{k} moved by {d:g}"
+
+
+def f_release(s, rng):
+    m = rng.choice(s["members"])
+    end = rng.choice(m["nodes"])
+    m["releases"] = sorted(set(m.get("releases", [])) | {end})
+    return f"frame: member {m.get('id')} released at {end}"
+
+
+def f_support(s, rng):
+    node = rng.choice(s["nodes"])["id"]
+    sup = s.setdefault("supports", {})
+    if rng.random() < 0.4:
+        sup[node] = rng.choice(["free", "pinned", "clamped"])
+    else:
+        keys = ["ux", "uy", "uz", "rx", "ry", "rz"] if _spatial(s) else ["ux", "uz", "ry"]
+        sup[node] = {k: rng.choice([0.0, 1e-6, 1.0, 1e6, 1e12, float("inf")]) for k in rng.sample(keys, rng.randint(1, len(keys)))}
+    return f"frame: support at {node} = {toml_value(sup[node])}"
+
+
+def f_section(s, rng):
+    m = rng.choice(s["members"])
+    sec = m.get("section", {})
+    dims = [k for k in ("width", "height", "diameter", "outer_diameter", "area", "Iy", "Iz", "J") if is_number(sec.get(k))]
+    k = rng.choice(dims)
+    f = 10.0 ** rng.choice([-3, -1, 1, 2])
+    sec[k] = sec[k] * f
+    if sec.get("shape") == "tube" and k == "outer_diameter":
+        sec["inner_diameter"] = sec["outer_diameter"] * rng.choice([0.1, 0.9])
+    return f"frame: member {m.get('id')} section.{k} x {f:g}"
+
+
+def f_mass(s, rng):
+    node = rng.choice(s["nodes"])["id"]
+    entry = {"node": node, "mass": 10.0 ** rng.uniform(-3, 4)}
+    if rng.random() < 0.5:
+        entry["Jy"] = 10.0 ** rng.uniform(-4, 2)
+    s.setdefault("masses", []).append(entry)
+    return f"frame: mass {entry['mass']:.3g} kg at {node}"
+
+
+def f_load(s, rng):
+    mag = rng.choice([-1.0, 1.0]) * 10.0 ** rng.uniform(-3, 7)
+    if rng.random() < 0.5:
+        node = rng.choice(s["nodes"])["id"]
+        comp = rng.choice(["Fx", "Fz", "My"] + (["Fy", "Mx", "Mz"] if _spatial(s) else []))
+        s.setdefault("loads", []).append({"node": node, comp: mag})
+        req = s.setdefault("request", {})
+        req.setdefault("probes", [node])
+        return f"frame: load {comp} = {mag:.3g} at {node}"
+    m = rng.choice(s["members"])
+    comp = rng.choice(["qx", "qz"] + (["qy"] if _spatial(s) else []))
+    s.setdefault("line_loads", []).append({"member": m["id"], comp: [mag, rng.choice([mag, 0.0, -mag])]})
+    s.setdefault("request", {}).setdefault("probes", [{"member": m["id"], "s": rng.choice([0.0, 0.3, 0.5, 1.0])}])
+    return f"frame: line load {comp} ~ {mag:.3g} on {m['id']}"
+
+
+def f_member(s, rng):
+    ids = [n["id"] for n in s["nodes"]]
+    a, b = rng.sample(ids, 2)
+    first = s["members"][0]
+    s["members"].append({"id": f"{a}{b}x", "nodes": [a, b], "section": copy.deepcopy(first.get("section", {}))})
+    return f"frame: member {a}-{b} added"
+
+
+def f_frame_request(s, rng):
+    req = s.setdefault("request", {})
+    what = rng.choice(["modes", "tolerance", "theory"])
+    if what == "modes":
+        req["modes"] = rng.choice([1, 2, 6, 20, 60])
+    elif what == "tolerance":
+        req["tolerance"] = rng.choice([1e-2, 1e-4, 1e-6])
+    else:
+        s["scene"]["theory"] = rng.choice(["euler-bernoulli", "timoshenko"])
+        if s["scene"]["theory"] == "timoshenko" and any(m.get("section", {}).get("shape") == "general" for m in s["members"]):
+            s.setdefault("material", {})["kappa"] = 0.5
+    return f"frame: request {what}"
+
+
+FRAME_MUTATIONS = [
+    (f_move_node, 3), (f_release, 3), (f_support, 4), (f_section, 3), (f_mass, 2), (f_load, 3), (f_member, 2),
+    (f_frame_request, 2), (m_scale_material, 2), (m_set_nu, 1), (m_drop_parts, 1),
+]
+
+
 # --- hostile
 
 
@@ -962,6 +1060,7 @@ MESHES = {
     ("dtfm", "beam"): ["1x1", "2x2", "1x3", "4x4", "8"],
     ("dtfm", "plate"): ["1", "2", "4", "10", "20", "16x8"],
 }
+MESHES[("rfem", "frame")] = ["1", "2", "8", "64"]
 HOSTILE_MESHES = ["0", "-1", "4x", "x4", "1e3", "abc", "99999999", "4x4x4", "8", "4x4", "16x8", " 8", "0x0"]
 
 
@@ -974,7 +1073,8 @@ def make_case(builtins, seed: int, case: int, backends: list[str]):
     hostile_case = rng.random() < 0.35
     for _ in range(rng.randint(1, 3)):
         hostile = hostile_case and rng.random() < 0.6
-        f = weighted(rng, HOSTILE_MUTATIONS if hostile else VALID_MUTATIONS)
+        valid = FRAME_MUTATIONS if sc_kind(s) == "frame" else VALID_MUTATIONS
+        f = weighted(rng, HOSTILE_MUTATIONS if hostile else valid)
         try:
             muts.append(f(s, rng))
         except (KeyError, IndexError, TypeError, AttributeError, ValueError, ArithmeticError) as e:
@@ -991,7 +1091,7 @@ def make_case(builtins, seed: int, case: int, backends: list[str]):
     # meshes: drawn for every back-end (so that --backends does not change the draw), used where selected
     meshes = {}
     if rng.random() < 0.25:
-        kind = sc_kind(s) if sc_kind(s) in ("beam", "plate") else "beam"
+        kind = sc_kind(s) if sc_kind(s) in ("beam", "plate", "frame") else "beam"
         for be in ALL_BACKENDS:
             if be == "exact":
                 continue
