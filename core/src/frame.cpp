@@ -34,6 +34,20 @@ MemberAxes member_axes(const Vec3& from, const Vec3& to, const std::optional<Vec
   return {ex, cross(ez, ex), ez};
 }
 
+Deflection frame_deflection(const Frame& frame, const FrameProbe& probe, const std::array<double, 6>& v) {
+  Deflection d;
+  d.probe = probe.label;
+  d.point = frame.probe_point(probe);
+  d.position = {d.point[0], d.point[2]};
+  d.u = v[0];
+  d.v = frame.spatial ? v[1] : 0.0;
+  d.w = v[2];
+  d.theta_x = frame.spatial ? v[3] : 0.0;
+  d.theta_y = v[4];
+  d.theta_z = frame.spatial ? v[5] : 0.0;
+  return d;
+}
+
 std::vector<int> Frame::node_dofs() const {
   if (spatial) return {0, 1, 2, 3, 4, 5};
   return {0, 2, 4};

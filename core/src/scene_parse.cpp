@@ -282,15 +282,7 @@ void read_request(const Reader& r, const toml::table& root, Scene& s) {
     if (!t) r.fail("request", "must be a table");
     r.only_keys(*t, "request", {"modes", "probes", "frf", "shapes", "tolerance", "transient"});
     if (const toml::node* tn = t->get("transient")) read_transient(r, *tn, s);
-    if (auto tol = r.opt_number(*t, "request", "tolerance")) {
-      if (!(*tol >= 1e-14 && *tol <= 1.0))
-        r.fail("request.tolerance", fmt::format("must lie in [1e-14, 1] (relative error; got {})", *tol));
-      s.request.tolerance = *tol;
-    }
-    if (auto k = r.opt_integer(*t, "request", "modes")) {
-      if (*k < 0 || *k > 100000) r.fail("request.modes", fmt::format("must lie in [0, 100000] (got {})", *k));
-      s.request.modes = static_cast<int>(*k);
-    }
+    scene_detail::read_modes_and_tolerance(r, *t, s);
     if (const toml::node* pn = t->get("probes")) {
       auto arr = pn->as_array();
       if (!arr) r.fail("request.probes", "must be an array");

@@ -302,15 +302,7 @@ void read_frame_request(const Reader& r, const toml::table& root, Scene& s, Fram
     if (t->get(k))
       r.fail(std::string("request.") + k, "not available for frames yet (modes and statics are): remove the key");
   r.only_keys(*t, "request", {"modes", "probes", "tolerance"});
-  if (auto tol = r.opt_number(*t, "request", "tolerance")) {
-    if (!(*tol >= 1e-14 && *tol <= 1.0))
-      r.fail("request.tolerance", fmt::format("must lie in [1e-14, 1] (relative error; got {})", *tol));
-    s.request.tolerance = *tol;
-  }
-  if (auto k = r.opt_integer(*t, "request", "modes")) {
-    if (*k < 0 || *k > 100000) r.fail("request.modes", fmt::format("must lie in [0, 100000] (got {})", *k));
-    s.request.modes = static_cast<int>(*k);
-  }
+  scene_detail::read_modes_and_tolerance(r, *t, s);
   if (const toml::node* pn = t->get("probes")) {
     const auto* arr = pn->as_array();
     if (!arr) r.fail("request.probes", "must be an array of node ids or { member = \"ID\", s = 0..1 }");

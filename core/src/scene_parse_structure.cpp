@@ -202,6 +202,18 @@ void scene_detail::read_distributed_loads(const Reader& r, const toml::table& ro
   }
 }
 
+void scene_detail::read_modes_and_tolerance(const Reader& r, const toml::table& t, Scene& s) {
+  if (auto tol = r.opt_number(t, "request", "tolerance")) {
+    if (!(*tol >= 1e-14 && *tol <= 1.0))
+      r.fail("request.tolerance", fmt::format("must lie in [1e-14, 1] (relative error; got {})", *tol));
+    s.request.tolerance = *tol;
+  }
+  if (auto k = r.opt_integer(t, "request", "modes")) {
+    if (*k < 0 || *k > 100000) r.fail("request.modes", fmt::format("must lie in [0, 100000] (got {})", *k));
+    s.request.modes = static_cast<int>(*k);
+  }
+}
+
 void scene_detail::read_gravity(const Reader& r, const toml::table& root, Scene& s) {
   const toml::node* n = root.get("gravity");
   if (!n) return;

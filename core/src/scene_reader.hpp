@@ -130,6 +130,8 @@ void read_point_supports(const Reader& r, const toml::table& sup, Scene& s);
 void read_masses(const Reader& r, const toml::table& root, Scene& s);
 /// [[line_loads]] (beams) and [[pressures]] (plates).
 void read_distributed_loads(const Reader& r, const toml::table& root, Scene& s);
+/// [request] modes and tolerance (the table `t`), as every kind of scene takes them.
+void read_modes_and_tolerance(const Reader& r, const toml::table& t, Scene& s);
 /// [gravity].
 void read_gravity(const Reader& r, const toml::table& root, Scene& s);
 

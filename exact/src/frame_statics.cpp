@@ -136,26 +136,17 @@ FrameSystem::Statics FrameSystem::statics() const {
   }
   out.imbalance = bal.relative();
   for (const FrameProbe& p : frame_.probes) {
-    Deflection df;
-    df.probe = p.label;
-    df.point = frame_.probe_point(p);
-    df.position = {df.point[0], df.point[2]};
     std::array<double, 6> g{};
     if (p.node >= 0) {
       for (std::size_t c = 0; c < 6; ++c) g[c] = value(node_rows(p.node)[c]);
-    } else {
-      const auto m = static_cast<std::size_t>(p.member);
-      const MemberState st = member_state(fields_[m], loads[m], d[m], P[m], p.s);
-      g = to_global(frame_.members[m].axes, st.d.data());
-      df.has_forces = true;
-      df.forces = st.forces;
+      out.probes.push_back(frame_deflection(frame_, p, g));
+      continue;
     }
-    df.u = g[0];
-    df.v = frame_.spatial ? g[1] : 0.0;
-    df.w = g[2];
-    df.theta_x = frame_.spatial ? g[3] : 0.0;
-    df.theta_y = g[4];
-    df.theta_z = frame_.spatial ? g[5] : 0.0;
+    const auto m = static_cast<std::size_t>(p.member);
+    const MemberState st = member_state(fields_[m], loads[m], d[m], P[m], p.s);
+    Deflection df = frame_deflection(frame_, p, to_global(frame_.members[m].axes, st.d.data()));
+    df.has_forces = true;
+    df.forces = st.forces;
     out.probes.push_back(df);
   }
   return out;

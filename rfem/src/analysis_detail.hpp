@@ -79,6 +79,9 @@ void beam_reactions(const Scene& s, const Model& model, const System& sys, const
 /// loads fq over the body DOFs. Not reported (a warning) where the multipliers do not balance.
 void frame_reactions(const Frame& f, const Model& model, const System& sys, const Eigen::VectorXd& z,
                      const Eigen::VectorXd& fq, Result& r);
+/// The static solve's normwise backward error (from its relative residual) into `sum`: a diagnostic,
+/// and a numerical issue above 1e-8.
+void note_static_backward_error(const System& sys, const Eigen::VectorXd& f, const StaticSolution& st, Summary& sum);
 /// A frame's statics on mesh n (frame_statics.cpp): node loads on the nodes' anchors, line loads by
 /// two Gauss points per rigid element's share of its member (its cell), displacements at node probes
 /// (the anchor's) and member probes (linear between the two element centres around it), reactions.

@@ -74,10 +74,6 @@ void frame_statics(const Scene& s, const Model& model, const System& sys, int n,
   }
   const Eigen::VectorXd q = sys.T * st.z;
   for (const FrameProbe& p : f.probes) {
-    Deflection d;
-    d.probe = p.label;
-    d.point = f.probe_point(p);
-    d.position = {d.point[0], d.point[2]};
     std::array<double, 6> v{};
     if (p.node >= 0) {
       v = motion(model, q, lay.anchor[static_cast<std::size_t>(p.node)]);
@@ -90,20 +86,10 @@ void frame_statics(const Scene& s, const Model& model, const System& sys, int n,
       const auto a = motion(model, q, lay.first[mi] + j), b = motion(model, q, lay.first[mi] + j + 1);
       for (std::size_t c = 0; c < 6; ++c) v[c] = (1 - t) * a[c] + t * b[c];
     }
-    d.u = v[0];
-    d.v = v[1];
-    d.w = v[2];
-    d.theta_x = v[3];
-    d.theta_y = v[4];
-    d.theta_z = v[5];
-    r.deflections.push_back(d);
+    r.deflections.push_back(frame_deflection(f, p, v));
   }
   frame_reactions(f, model, sys, st.z, fq, r);
-  const double fn = fz.norm(), backward = fn > 0 ? st.residual * fn / (norm1(sys.K) * st.z.norm() + fn) : 0.0;
-  r.summary.set_diagnostic("static_relative_residual", st.residual);
-  r.summary.note_backward_error(backward);
-  if (backward > 1e-8)
-    r.summary.raise(Status::NumericalIssue, fmt::format("static solve: backward error {:.3g} above 1e-8", backward));
+  note_static_backward_error(sys, fz, st, r.summary);
 }
 
 }  // namespace modalbench::rfem::detail

@@ -46,6 +46,22 @@ ModeOptions mode_options(const ResolvedOptions& o, int modes) {
   return mo;
 }
 
+}  // namespace
+
+void note_static_backward_error(const System& sys, const Eigen::VectorXd& f, const StaticSolution& st, Summary& sum) {
+  // Normwise backward error of the static solve, from its relative residual ||K z - f|| / ||f||.
+  const double fn = f.norm(), backward = fn > 0 ? st.residual * fn / (norm1(sys.K) * st.z.norm() + fn) : 0.0;
+  sum.set_diagnostic("static_relative_residual", st.residual);
+  sum.note_backward_error(backward);
+  if (backward > 1e-8)
+    sum.raise(Status::NumericalIssue,
+              fmt::format("static solve: backward error {:.3g} above 1e-8 (relative residual {:.3g}): the deflections "
+                          "are not trustworthy",
+                          backward, st.residual));
+}
+
+namespace {
+
 /// Deflections at the probes (with the point actions' singular part), the reactions and the static
 /// solve's backward error.
 void solve_statics(const Scene& s, const Model& model, const System& sys, Result& r) {
@@ -95,15 +111,7 @@ void solve_statics(const Scene& s, const Model& model, const System& sys, Result
   }
   if (s.is_beam()) detail::beam_reactions(s, model, sys, st.z, actions, r);
   else detail::plate_reactions(s, model, sys, st.z, actions, r);
-  // Normwise backward error of the static solve, from its relative residual ||K z - f|| / ||f||.
-  const double fn = f.norm(), backward = fn > 0 ? st.residual * fn / (norm1(sys.K) * st.z.norm() + fn) : 0.0;
-  sum.set_diagnostic("static_relative_residual", st.residual);
-  sum.note_backward_error(backward);
-  if (backward > 1e-8)
-    sum.raise(Status::NumericalIssue,
-              fmt::format("static solve: backward error {:.3g} above 1e-8 (relative residual {:.3g}): the deflections "
-                          "are not trustworthy",
-                          backward, st.residual));
+  note_static_backward_error(sys, f, st, sum);
 }
 
 /// Fills r.frf; returns the method used. `modes`: modal superposition over them (null: direct).

@@ -22,7 +22,7 @@ using ld = long double;
 
 namespace {
 
-Scene builtin(const char* file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/frames/" + file); }
+Scene builtin(const char* file) { return load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + file); }
 
 Result solve(const std::string& toml) {
   exact::ExactSolver s;
@@ -182,7 +182,7 @@ std::vector<double> frame_roots(const TFrame& f, double top, int steps) {
   return out;
 }
 
-/// The portal of scenes/frames/portal.toml as TOML, with optional hinge and supports.
+/// The portal of scenes/frame_portal.toml as TOML, with optional hinge and supports.
 std::string portal_toml(const std::string& physics, const std::string& extra_member_bc = "",
                         const std::string& support_d = "clamped") {
   return fmt::format(R"([scene]

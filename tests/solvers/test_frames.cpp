@@ -22,11 +22,12 @@ namespace {
 
 std::vector<Scene> builtin_frames() {
   std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(MODALBENCH_SCENES_DIR) + "/frames"))
+  for (const auto& e : std::filesystem::directory_iterator(MODALBENCH_SCENES_DIR))
     if (e.path().extension() == ".toml") files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   std::vector<Scene> out;
-  for (const auto& f : files) out.push_back(load_scene(f));
+  for (const auto& f : files)
+    if (Scene s = load_scene(f); s.is_frame()) out.push_back(s);
   return out;
 }
 
@@ -91,9 +92,9 @@ BOOST_AUTO_TEST_CASE(rfem_frames_converge_at_second_order) {
   // observed order log2(e(h) / e(h/2)) of each of the first four modes tends to 2.
   const Solver& exact = registry().get("exact");
   const Solver& rfem = registry().get("rfem");
-  for (const char* name : {"portal.toml", "l_space_frame.toml"}) {
+  for (const char* name : {"frame_portal.toml", "frame_l_space.toml"}) {
     BOOST_TEST_CONTEXT(name) {
-      Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/frames/" + name);
+      Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/" + name);
       sc.request.modes = 4;
       const Result ref = exact.solve(sc, {}, {});
       BOOST_TEST_REQUIRE(ref.ok(), ref.summary.message);
@@ -114,7 +115,7 @@ BOOST_AUTO_TEST_CASE(rfem_frames_converge_at_second_order) {
 }
 
 BOOST_AUTO_TEST_CASE(the_other_back_ends_refuse_frames_with_a_reason) {
-  const Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/frames/portal.toml");
+  const Scene sc = load_scene(std::string(MODALBENCH_SCENES_DIR) + "/frame_portal.toml");
   for (const char* name : {"dtfm", "difference_eq"}) {
     const Capability c = registry().get(name).supports(sc);
     BOOST_TEST(!c.any());

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "modalbench/result.hpp"
 #include "modalbench/scene.hpp"
 
 namespace modalbench {
@@ -104,6 +105,10 @@ struct Frame {
   std::vector<FrameLoad> all_node_loads(const std::optional<std::array<double, 3>>& gravity) const;
   double total_mass() const;  ///< members' rho A L and the point masses, kg
 };
+
+/// A frame probe's static response: its label and point, the displacements v (u, v, w, theta_x,
+/// theta_y, theta_z, global axes; a planar frame's v, theta_x, theta_z left 0).
+Deflection frame_deflection(const Frame& frame, const FrameProbe& probe, const std::array<double, 6>& v);
 
 /// A member's axes from its end points and `up` (a vector in its local x-z plane; nullopt: global z,
 /// or global x for a member along z). Throws std::invalid_argument when up is parallel to the member.
