@@ -440,8 +440,8 @@ ResourceEstimate ExactSolver::estimate(const Scene& s, const Discretization&, co
   const double k = std::max(0, rq.modes);
   double pieces_frf = 0;
   if (s.is_frame()) {
-    // A count assembles every member (each field's doubling, O(log k)) and factors the dense
-    // K(lambda) of n unknowns; about 45 counts per mode.
+    // A count assembles every member (closed forms, or a Timoshenko field's doubling in O(log k))
+    // and factors the dense K(lambda) of n unknowns; about 45 counts per mode.
     const double n = 6.0 * static_cast<double>(s.frame->nodes.size() + 2 * s.frame->members.size());
     const double count_s = 2e-5 * static_cast<double>(s.frame->members.size()) * std::log2(k + 2) + 1e-9 * n * n * n;
     e.seconds = 45.0 * k * count_s;
