@@ -14,7 +14,6 @@
 #include "frames.hpp"
 #include "plate_responses.hpp"
 #include "rotor.hpp"
-#include "modalbench/frame.hpp"
 #include "modalbench/rotor_scene.hpp"
 
 namespace modalbench::exact {
@@ -439,16 +438,7 @@ ResourceEstimate ExactSolver::estimate(const Scene& s, const Discretization&, co
   const auto& rq = s.request;
   const double k = std::max(0, rq.modes);
   double pieces_frf = 0;
-  if (s.is_frame()) {
-    // A count assembles every member (closed forms, or a Timoshenko field's doubling in O(log k))
-    // and factors the dense K(lambda) of n unknowns; about 45 counts per mode.
-    const double n = 6.0 * static_cast<double>(s.frame->nodes.size() + 2 * s.frame->members.size());
-    const double count_s = 2e-5 * static_cast<double>(s.frame->members.size()) * std::log2(k + 2) + 1e-9 * n * n * n;
-    e.seconds = 45.0 * k * count_s;
-    e.bytes = 8.0 * n * n * 4;
-    e.basis = fmt::format("{} modes of a frame of {} members, about {:.0f} unknowns", rq.modes, s.frame->members.size(), n);
-    return e;
-  }
+  if (s.is_frame()) return detail::frame_estimate(s);
   if (s.is_beam()) {
     // The counts' long segments cost O(log k) per gap between features (ends, steps, point
     // supports and masses), with a few more gaps where a halving's clamped frequency lies next to
@@ -500,14 +490,7 @@ std::unique_ptr<Kernels> ExactSolver::build(const Scene& s, const Discretization
   r.summary.model = fmt::format("the exact {} {}", to_string(s.theory), to_string(s.kind));
   if (s.is_beam())
     r.summary.method = fmt::format("exact {} beam: dynamic stiffness + Wittrick-Williams count", to_string(s.theory));
-  if (s.is_frame())
-    r.summary.method = fmt::format(
-        "exact {} frame: each member's exact dynamic stiffness (axial, bending{}: bars and Euler-Bernoulli "
-        "bending in closed form, Timoshenko bending by doubling from pieces with |p| h <= 1), assembled at the "
-        "nodes; frequencies by bisection on the Wittrick-Williams count (the members' clamped-end counts J0 plus the "
-        "negative pivots of K(omega); a member cut where omega lies next to one of its clamped frequencies) to 1e-13 "
-        "in omega^2; statics by K(0) with each member's exact fixed-end forces",
-        to_string(s.theory), s.frame->spatial ? " in both planes, torsion" : "");
+  if (s.is_frame()) r.summary.method = detail::frame_method(s);
   if (s.is_beam() && s.has_tapered_pieces())
     r.summary.method +=
         "; tapered pieces: transfer matrices by the sixth-order Magnus integrator, steps doubled until two agree "

@@ -52,16 +52,20 @@ int scaled_nullity(const Eigen::MatrixXd& K) {
 }
 
 FrameSystem::FrameSystem(const Scene& scene) : scene_(scene), frame_(*scene.frame) {
+  double point_masses = 0;
+  for (const FrameMass& pm : frame_.masses) point_masses += pm.mass;
   for (const FrameMember& m : frame_.members) {
     fields_.push_back(member_fields(m, frame_.spatial, scene.theory, m.length));
     const Section p = m.properties();
     const double I = frame_.spatial ? std::min(p.Iy, p.Iz) : p.Iy;
     // A member's bending scale EI / (L^3 m), m its mass and every point mass (a heavy mass on a
     // slender member sets modes far below the member's own).
-    double point_masses = 0;
-    for (const FrameMass& pm : frame_.masses) point_masses += pm.mass;
     const double s = m.material.E * I / (std::pow(m.length, 3) * (m.material.rho * p.A * m.length + point_masses));
     lambda_scale_ = std::min(lambda_scale_, s);
+  }
+  for (std::size_t k = 0; k < frame_.nodes.size(); ++k) {
+    springs_.push_back(node_springs(frame_, static_cast<int>(k)));
+    inertia_.push_back(node_inertia(frame_, static_cast<int>(k)));
   }
   number_nodes();
   number_members();
@@ -73,8 +77,8 @@ void FrameSystem::number_nodes() {
   node_rows_.assign(frame_.nodes.size(), std::vector<Row>(6));
   for (std::size_t k = 0; k < frame_.nodes.size(); ++k) {
     const int node = static_cast<int>(k);
-    const auto springs = node_springs(frame_, node);
-    const auto inertia = node_inertia(frame_, node);
+    const auto& springs = springs_[k];
+    const auto& inertia = inertia_[k];
     std::vector<int> rotations;
     for (const int g : active) {
       if (std::isinf(springs[static_cast<std::size_t>(g)])) continue;  // held
@@ -209,8 +213,8 @@ Eigen::MatrixXd FrameSystem::assemble(double lambda, int* clamped_below, double*
     }
   }
   for (std::size_t k = 0; k < frame_.nodes.size(); ++k) {
-    const auto springs = node_springs(frame_, static_cast<int>(k));
-    const auto inertia = node_inertia(frame_, static_cast<int>(k));
+    const auto& springs = springs_[k];
+    const auto& inertia = inertia_[k];
     for (std::size_t g = 0; g < 6; ++g) {
       const double v = (std::isinf(springs[g]) ? 0.0 : springs[g]) - lambda * inertia[g];
       if (v == 0.0) continue;

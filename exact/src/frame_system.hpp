@@ -88,6 +88,7 @@ class FrameSystem {
   std::vector<std::string> undefined_rotations_;
   double lambda_scale_ = INFINITY;
   std::vector<std::vector<Row>> member_rows_;
+  std::vector<std::array<double, 6>> springs_, inertia_;  ///< per node and global DOF (the supports', the masses')
 };
 
 }  // namespace modalbench::exact::detail
